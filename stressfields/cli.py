@@ -1,0 +1,176 @@
+"""Command line: stressfields run | list | describe | validate | schema."""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from . import __version__
+from .api import describe, scenarios
+from .build import build
+from .io import OutputError, to_netcdf
+from .recipe import RecipeError, load
+
+LOCAL_SCHEDULERS = ("threads", "synchronous", "processes")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = _parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except (RecipeError, OutputError, UsageError) as exc:
+        print(f"error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted; no partial output was left", file=sys.stderr)
+        return 130
+
+
+class UsageError(ValueError):
+    pass
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(prog="stressfields", description="Reference datasets of contact-mechanics "
+                                "fields: recipe (TOML) -> CF NetCDF.")
+    p.add_argument("--version", action="version", version=f"stressfields {__version__}")
+    sub = p.add_subparsers(dest="command", required=True)
+
+    run = sub.add_parser("run", help="generate the datasets of one or more recipes")
+    run.add_argument("recipes", nargs="+", type=Path, help="recipe TOML file(s)")
+    run.add_argument("-o", "--output", type=Path, help="output NetCDF file (one recipe only)")
+    run.add_argument("-d", "--out-dir", type=Path, default=Path("out"),
+                     help="directory for <recipe name>.nc when -o is not given (default: out)")
+    run.add_argument("--chunks", default="", help="chunk sizes per dimension, e.g. x=1000,mu=1")
+    run.add_argument("--scheduler", default="threads",
+                     help="dask scheduler: threads (default), synchronous, processes, or the address of a "
+                          "dask.distributed scheduler (tcp://host:8786)")
+    run.add_argument("--overwrite", action="store_true", help="replace existing output files")
+    run.add_argument("--plot", action="store_true", help="also write a quick-look PNG beside each file "
+                     "(needs matplotlib: pip install 'stressfields[plot]')")
+    run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    run.set_defaults(func=_run)
+
+    lst = sub.add_parser("list", help="list the scenarios")
+    lst.set_defaults(func=_list)
+
+    desc = sub.add_parser("describe", help="parameters and variables of a scenario")
+    desc.add_argument("scenario")
+    desc.set_defaults(func=_describe)
+
+    val = sub.add_parser("validate", help="check recipes without computing anything")
+    val.add_argument("recipes", nargs="+", type=Path)
+    val.set_defaults(func=_validate)
+
+    sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
+    sch.set_defaults(func=_schema)
+    return p
+
+
+def _run(args) -> int:
+    if args.output and len(args.recipes) > 1:
+        raise UsageError("-o/--output takes one recipe; use --out-dir for several")
+    chunks = _parse_chunks(args.chunks)
+    jobs = []
+    for path in args.recipes:      # validate everything before computing anything
+        recipe = load(path)
+        bad = set(chunks) - set(recipe.swept)
+        if bad:
+            raise UsageError(f"--chunks: {', '.join(sorted(bad))} is not a swept dimension of {path} "
+                             f"(swept: {', '.join(recipe.swept) or 'none'})")
+        target = args.output or args.out_dir / f"{path.stem}.nc"
+        if target.exists() and not args.overwrite:
+            raise OutputError(f"{target} exists; refusing to overwrite it (use --overwrite)")
+        jobs.append((path, recipe, target))
+    if not args.output:
+        args.out_dir.mkdir(parents=True, exist_ok=True)
+    scheduler, client = _scheduler(args.scheduler)
+    try:
+        for path, recipe, target in jobs:
+            ds = build(recipe, chunks)
+            if not args.quiet:
+                dims = " x ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "scalar"
+                print(f"{path} -> {target}  [{recipe.scenario.name}: {dims}, "
+                      f"{len(ds.data_vars)} variables]", file=sys.stderr)
+            to_netcdf(ds, target, overwrite=args.overwrite, progress=not args.quiet and client is None,
+                      scheduler=scheduler)
+            if args.plot:
+                from .plot import quicklook
+
+                png = quicklook(target, recipe)
+                if not args.quiet:
+                    print(f"  quick look: {png}", file=sys.stderr)
+    finally:
+        if client is not None:
+            client.close()
+    return 0
+
+
+def _scheduler(name: str):
+    if name in LOCAL_SCHEDULERS:
+        return name, None
+    try:
+        from distributed import Client
+    except ImportError:
+        raise UsageError(f"--scheduler {name}: a cluster address needs dask.distributed "
+                         "(pip install 'stressfields[cluster]')") from None
+    try:
+        client = Client(name, timeout="10s")
+    except (OSError, ValueError) as exc:
+        raise UsageError(f"--scheduler {name}: cannot connect ({exc})") from None
+    return client, client
+
+
+def _parse_chunks(text: str) -> dict[str, int]:
+    chunks = {}
+    for item in filter(None, (s.strip() for s in text.split(","))):
+        dim, _, size = item.partition("=")
+        try:
+            value = int(size)
+        except ValueError:
+            raise UsageError(f"--chunks: {item!r} must look like dim=size with an integer size") from None
+        if value < 1 and value != -1:
+            raise UsageError(f"--chunks: {item!r}: size must be a positive integer or -1 (whole)")
+        chunks[dim.strip()] = value
+    return chunks
+
+
+def _list(args) -> int:
+    for name, summary in scenarios().items():
+        print(f"{name:16s} {summary}")
+    return 0
+
+
+def _describe(args) -> int:
+    try:
+        print(describe(args.scenario))
+    except KeyError as exc:
+        raise UsageError(exc.args[0]) from None
+    return 0
+
+
+def _validate(args) -> int:
+    failed = 0
+    for path in args.recipes:
+        try:
+            recipe = load(path)
+        except RecipeError as exc:
+            print(str(exc), file=sys.stderr)
+            failed += 1
+            continue
+        dims = ", ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "no swept dimension"
+        print(f"{path}: ok ({recipe.scenario.name}; {dims}; {recipe.size} points; "
+              f"variables: {', '.join(recipe.variables)})")
+    return 2 if failed else 0
+
+
+def _schema(args) -> int:
+    from .schema import document
+
+    sys.stdout.write(document())
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,77 @@
+"""NetCDF output: written beside the target under a temporary name, renamed when complete."""
+from __future__ import annotations
+
+import os
+import tempfile
+from contextlib import nullcontext
+from pathlib import Path
+
+import xarray as xr
+
+
+class OutputError(OSError):
+    """The target cannot be written (exists, unwritable, disk full); nothing was left behind."""
+
+
+def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False,
+              progress: bool = False, scheduler=None) -> Path:
+    """Compute ``ds`` chunk by chunk and write it to ``path`` atomically.
+
+    The file appears under its final name only once it is complete; an existing file is
+    refused unless ``overwrite``. ``scheduler`` is passed to dask (None: the local threads).
+    """
+    target = Path(path)
+    if target.exists() and not overwrite:
+        raise OutputError(f"{target} exists; refusing to overwrite it (use --overwrite)")
+    if target.is_dir():
+        raise OutputError(f"{target} is a directory")
+    parent = target.parent if str(target.parent) else Path(".")
+    if not parent.is_dir():
+        raise OutputError(f"cannot write {target}: directory {parent} does not exist")
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=parent)
+    os.close(fd)
+    try:
+        delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds), compute=False)
+        with _progress(progress):
+            delayed.compute(scheduler=scheduler)
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+        os.replace(tmp, target)
+    except OSError as exc:
+        _remove(tmp)
+        raise OutputError(f"cannot write {target}: {exc.strerror or exc}") from exc
+    except BaseException:
+        _remove(tmp)
+        raise
+    return target
+
+
+def _encoding(ds: xr.Dataset) -> dict:
+    enc: dict = {}
+    for name, var in ds.variables.items():
+        e: dict = {"_FillValue": None}
+        if var.chunks and var.ndim:
+            # one dask chunk = one HDF5 chunk: a line along x stays contiguous on disk
+            e["chunksizes"] = tuple(int(c[0]) for c in var.chunks)
+        if var.dtype == object:
+            e = {}
+        enc[name] = e
+    return enc
+
+
+def _progress(show: bool):
+    if not show:
+        return nullcontext()
+    from dask.diagnostics import ProgressBar
+
+    return ProgressBar(minimum=0.5, dt=0.2)
+
+
+def _remove(path: str) -> None:
+    try:
+        os.unlink(path)
+    except FileNotFoundError:
+        pass
+
+
+__all__ = ["to_netcdf", "OutputError"]

@@ -1,0 +1,159 @@
+"""The one declaration of a scenario: its parameters, its variables, and how it evaluates.
+
+Everything user-facing is derived from these declarations: recipe validation and its error
+messages, CLI help (`stressfields describe`), CF attributes of the dataset, and data_schema.md.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+#: Values a parameter may take.
+FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One recipe parameter: a single value or, if ``sweepable``, a sweep that becomes a dimension.
+
+    ``units`` is the UDUNITS string in the default (normalised) mode and ``units_physical`` the
+    one used when the recipe switches to physical units (``None``: the same in both modes).
+    """
+
+    name: str
+    meaning: str
+    units: str = "1"
+    units_physical: str | None = None
+    kind: str = FLOAT
+    default: Any = None
+    required: bool = False
+    low: float | None = None
+    high: float | None = None
+    low_open: bool = False
+    high_open: bool = False
+    choices: tuple[str, ...] = ()
+    sweepable: bool = True
+    #: only meaningful in this mode ("normalised" or "physical"); None: both
+    mode: str | None = None
+    #: only meaningful when another parameter has one of these values, e.g. {"profile": ("power_law",)}
+    when: Mapping[str, tuple] = field(default_factory=dict)
+
+    def units_in(self, physical: bool) -> str:
+        return self.units_physical if (physical and self.units_physical) else self.units
+
+    def allowed(self) -> str:
+        """Plain-language description of the allowed values, used in errors and in the schema."""
+        if self.choices:
+            return "one of " + ", ".join(repr(c) for c in self.choices)
+        if self.kind == ARRAY:
+            return "an array of finite numbers"
+        lo = "(" if self.low_open else "["
+        hi = ")" if self.high_open else "]"
+        low = "-inf" if self.low is None else _fmt(self.low)
+        high = "inf" if self.high is None else _fmt(self.high)
+        what = "an integer" if self.kind == INT else "a number"
+        if self.low is None and self.high is None:
+            return what
+        return f"{what} in {lo}{low}, {high}{hi}"
+
+    def check(self, value) -> str | None:
+        """Return why ``value`` (one scalar) is not allowed, or None."""
+        if self.choices:
+            if value not in self.choices:
+                return f"must be {self.allowed()}"
+            return None
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            return f"must be {self.allowed()}, got a {type(value).__name__}"
+        if self.kind == INT and not float(value).is_integer():
+            return f"must be {self.allowed()}"
+        v = float(value)
+        if not math.isfinite(v):
+            return f"must be finite ({self.allowed()})"
+        if self.low is not None and (v < self.low or (self.low_open and v == self.low)):
+            return f"must be {self.allowed()}"
+        if self.high is not None and (v > self.high or (self.high_open and v == self.high)):
+            return f"must be {self.allowed()}"
+        return None
+
+
+@dataclass(frozen=True)
+class Variable:
+    """One output variable.
+
+    ``dims`` lists the parameters it depends on (a swept one becomes a dimension of the
+    variable); ``None`` means all of them. ``scale`` names the reference scale of a normalised
+    variable; it becomes the ``normalisation`` attribute and is said in ``long_name``.
+    """
+
+    name: str
+    long_name: str
+    units: str = "1"
+    units_physical: str | None = None
+    scale: str | None = None
+    dims: tuple[str, ...] | None = None
+    dtype: str = "float64"
+    flag_values: tuple[int, ...] = ()
+    flag_meanings: tuple[str, ...] = ()
+    comment: str | None = None
+    mode: str | None = None
+    #: computed whenever any other variable is requested (e.g. the validity flag)
+    always: bool = False
+
+    def units_in(self, physical: bool) -> str:
+        return self.units_physical if (physical and self.units_physical) else self.units
+
+    def long_name_in(self, physical: bool) -> str:
+        if self.scale and not physical:
+            return f"{self.long_name} divided by {self.scale}"
+        return self.long_name
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A user-facing scenario: the registry maps ``name`` to one of these."""
+
+    name: str
+    summary: str
+    references: str
+    parameters: tuple[Parameter, ...]
+    variables: tuple[Variable, ...]
+    #: evaluate(names, params, options) -> {name: array}; params maps each parameter name to a
+    #: NumPy value broadcastable to the block (a scalar for a fixed one); options holds the
+    #: recipe's [method] table and the mode ("physical": bool).
+    evaluate: Callable[..., dict[str, np.ndarray]]
+    #: parameters whose presence switches the scenario to physical units
+    physical_switch: str | None = None
+    methods: tuple[str, ...] = ("auto",)
+    default_variables: tuple[str, ...] | None = None
+    #: extra checks across parameters: check(values, physical, method) -> list of messages
+    check: Callable[..., list[str]] | None = None
+
+    def parameter(self, name: str) -> Parameter:
+        return {p.name: p for p in self.parameters}[name]
+
+    def variable(self, name: str) -> Variable:
+        return {v.name: v for v in self.variables}[name]
+
+    def variables_in(self, physical: bool) -> tuple[Variable, ...]:
+        mode = "physical" if physical else "normalised"
+        return tuple(v for v in self.variables if v.mode in (None, mode))
+
+
+def nonfinite_flag(*arrays: np.ndarray) -> np.ndarray:
+    """Per-point validity flag: 0 finite, 1 some value unbounded (+-inf), 2 some value undefined (NaN)."""
+    shape = np.broadcast_shapes(*(np.shape(a) for a in arrays))
+    flag = np.zeros(shape, dtype=np.int8)
+    for arr in arrays:
+        arr = np.broadcast_to(arr, shape)
+        flag = np.maximum(flag, np.where(np.isinf(arr), 1, 0).astype(np.int8))
+    for arr in arrays:
+        arr = np.broadcast_to(arr, shape)
+        flag = np.where(np.isnan(arr), np.int8(2), flag)
+    return flag
+
+
+def _fmt(v: float) -> str:
+    return repr(int(v)) if float(v).is_integer() and abs(v) < 1e15 else repr(float(v))

@@ -1,0 +1,126 @@
+"""Recipe validation: every invalid recipe gets a message naming the key, the value and what is allowed."""
+import numpy as np
+import pytest
+
+from stressfields.recipe import RecipeError, load
+
+BASE = {"scenario": "conical", "parameters": {"x": [0.5]}}
+
+
+def recipe(**params):
+    return {"scenario": "conical", "parameters": {"x": [0.5], **params}}
+
+
+def problems(data):
+    with pytest.raises(RecipeError) as info:
+        load(data)
+    return " | ".join(info.value.problems)
+
+
+def test_minimal_recipe_gets_defaults():
+    r = load(BASE)
+    assert r.values["nu"] == 0.3 and r.values["mu"] == 0.0 and r.values["ux0"] == 0.0
+    assert r.swept == ("x",)
+    assert not r.physical
+
+
+def test_sweep_forms():
+    r = load(recipe(mu=[0.0, 0.1], nu={"start": 0.0, "stop": 0.5, "num": 6},
+                    x={"start": 0.01, "stop": 10.0, "num": 4, "log": True}))
+    assert r.swept == ("nu", "mu", "x")
+    np.testing.assert_allclose(r.values["nu"], np.linspace(0, 0.5, 6))
+    np.testing.assert_allclose(r.values["x"], [0.01, 0.1, 1.0, 10.0])
+    assert r.shape == {"nu": 6, "mu": 2, "x": 4}
+
+
+@pytest.mark.parametrize("params, words", [
+    ({"nu": 0.6}, ["nu = 0.6", "[0, 0.5]"]),
+    ({"nu": -0.1}, ["nu = -0.1", "[0, 0.5]"]),
+    ({"mu": -0.2}, ["mu = -0.2", "[0, 10]"]),
+    ({"mu": [0.1, -0.1]}, ["mu sweep value -0.1", "[0, 10]"]),
+    ({"nu": "soft"}, ["nu = 'soft'", "a number"]),
+    ({"nu": True}, ["nu = True"]),
+    ({"mu": {"start": 0, "stop": 1}}, ["mu", "start, stop, num", "missing", "num"]),
+    ({"mu": {"start": 0, "stop": 1, "num": 0}}, ["mu.num = 0", "integer"]),
+    ({"mu": {"start": 0, "stop": 1, "num": 3, "step": 1}}, ["unknown key", "step"]),
+    ({"x": {"start": -1, "stop": 1, "num": 3, "log": True}}, ["log sweep", "start > 0"]),
+    ({"mu": []}, ["empty sweep"]),
+    ({"mu": [0.1, 0.1]}, ["repeats a value"]),
+    ({"friction": 0.3}, ["unknown parameter 'friction'", "allowed: nu, mu"]),
+    ({"theta": 0.1}, ["'theta' is only used in physical mode", "give 'E'"]),
+])
+def test_bad_parameters_are_named(params, words):
+    msg = problems(recipe(**params))
+    for w in words:
+        assert w in msg, (w, msg)
+
+
+def test_unknown_scenario_and_keys():
+    assert "scenario = 'sphere' is unknown; one of: conical, parabolic" in problems({"scenario": "sphere"})
+    assert "missing key 'scenario'" in problems({"parameters": {}})
+    msg = problems({**BASE, "outputs": {}})
+    assert "unknown key 'outputs'" in msg and "allowed top-level keys" in msg
+    assert "unknown key 'method.order'" in problems({**BASE, "method": {"order": 3}})
+
+
+def test_missing_required_parameter():
+    msg = problems({"scenario": "conical", "parameters": {}})
+    assert "missing parameter 'x'" in msg
+
+
+def test_physical_mode_needs_geometry_and_depth():
+    msg = problems(recipe(E=2e11))
+    assert "missing parameter 'delta'" in msg and "missing parameter 'theta'" in msg
+    r = load(recipe(E=2e11, delta=1e-6, theta=0.1))
+    assert r.physical
+
+
+def test_output_and_method_checks():
+    msg = problems({**BASE, "output": {"variables": ["sigma_xx", "tau"], "chunks": {"mu": 3}}})
+    assert "unknown variable 'tau'" in msg and "available: sigma_xx" in msg
+    assert "output.chunks.mu: 'mu' is not a swept dimension" in msg
+    assert "method.method = 'fft'" in problems({**BASE, "method": {"method": "fft"}})
+    assert "method.rtol = 0.5 must be a number in [1e-14, 0.01]" in problems({**BASE, "method": {"rtol": 0.5}})
+    msg = problems({**BASE, "output": {"variables": ["contact_radius"]}})
+    assert "'contact_radius'" in msg and "in this mode" in msg
+
+
+def test_axisymmetric_profile_rules():
+    base = {"scenario": "axisymmetric", "parameters": {"x": [0.5]}}
+    assert "missing parameter 'n'" in problems(base)
+    tab = {"scenario": "axisymmetric",
+           "parameters": {"x": [0.5], "profile": "tabulated", "profile_r": [0.0, 0.5, 1.0, 1.5],
+                          "profile_f": [0.0, 0.1, 0.4]}}
+    assert "profile_r has 4 values but profile_f has 3" in problems(tab)
+    tab["parameters"]["profile_f"] = [0.0, 0.1, 0.4, 0.9]
+    tab["parameters"]["n"] = 2.0
+    assert "'n' is only used when profile = 'power_law'" in problems(tab)
+    del tab["parameters"]["n"]
+    tab["parameters"]["profile_r"] = [0.0, 0.2, 0.4, 0.6]
+    assert "must cover the contact" in problems(tab)
+    msg = problems({"scenario": "axisymmetric", "parameters": {"x": [0.5], "n": 3.0},
+                    "method": {"method": "closed"}})
+    assert "no closed form" in msg
+    msg = problems({"scenario": "axisymmetric", "parameters": {"x": [0.5], "profile": "cylinder"}})
+    assert "profile = 'cylinder' must be one of 'power_law', 'tabulated', 'flat_punch'" in msg
+
+
+def test_all_problems_reported_at_once():
+    msg = problems(recipe(nu=0.9, mu=-1.0))
+    assert "nu = 0.9" in msg and "mu = -1.0" in msg
+
+
+def test_hash_is_canonical():
+    a = load(recipe(mu=[0.1, 0.2], nu=0.3))
+    b = load({"parameters": {"nu": 0.3, "mu": [0.1, 0.2], "x": [0.5]}, "scenario": "conical"})
+    c = load(recipe(mu=[0.1, 0.25]))
+    assert a.sha256 == b.sha256 != c.sha256
+
+
+def test_toml_file_errors(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text("scenario = conical\n")
+    with pytest.raises(RecipeError, match="not valid TOML"):
+        load(bad)
+    with pytest.raises(RecipeError, match="cannot read"):
+        load(tmp_path / "missing.toml")
