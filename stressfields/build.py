@@ -80,8 +80,9 @@ def _groups(recipe: Recipe) -> dict[tuple[str, ...], list[str]]:
     """Requested variables grouped by their dimensions (in declaration order)."""
     scen = recipe.scenario
     names = list(recipe.variables)
-    if any(scen.variable(n).dims is None for n in names):
-        names += [v.name for v in scen.variables_in(recipe.physical) if v.always and v.name not in names]
+    requested_dims = {scen.variable(n).dims for n in names}
+    names += [v.name for v in scen.variables_in(recipe.physical)
+              if v.always and v.dims in requested_dims and v.name not in names]
     groups: dict[tuple[str, ...], list[str]] = {}
     for name in names:
         deps = scen.variable(name).dims

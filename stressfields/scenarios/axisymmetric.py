@@ -60,9 +60,10 @@ PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-d
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
 
 
-def _variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
-    """The output variables; `case` lists the non-spatial parameters of the scenario."""
+def _variables(case: tuple[str, ...], geometry: tuple[str, ...]) -> tuple[Variable, ...]:
+    """The output variables; `case` lists the non-spatial parameters, `geometry` the profile's."""
     everything = case + SPATIAL
+    load = ("nu", "E", "delta") + geometry     # what fixes a, F_N and p_m
     stress = [Variable(f"sigma_{c}", f"surface stress component sigma_{c} at z = 0", units_physical="Pa",
                        scale=PM, dims=everything) for c in ("xx", "yy", "zz", "xy", "xz", "yz")]
     return tuple(stress) + (
@@ -78,9 +79,9 @@ def _variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
         Variable("stick_radius", "radius c of the stick zone (Cattaneo-Mindlin; 0 in gross slip; a under "
                  "normal load only)", units_physical="m", scale="the contact radius a", dims=case),
         Variable("mean_pressure", "mean contact pressure p_m = F_N/(pi a^2)", units_physical="Pa",
-                 scale="the effective modulus E* = E/(1-nu^2)", dims=case),
-        Variable("contact_radius", "contact radius a", units="m", dims=case, mode="physical"),
-        Variable("normal_force", "normal force F_N", units="N", dims=case, mode="physical"),
+                 scale="the effective modulus E* = E/(1-nu^2)", dims=load),
+        Variable("contact_radius", "contact radius a", units="m", dims=("delta",) + geometry, mode="physical"),
+        Variable("normal_force", "normal force F_N", units="N", dims=load, mode="physical"),
         Variable("region", "contact region of the surface point", dtype="int8", dims=everything,
                  flag_values=(0, 1, 2, 3),
                  flag_meanings=("outside_contact", "stick", "slip", "contact_without_tangential_traction")),
@@ -101,27 +102,40 @@ def _evaluate(make_profile):
     def evaluate(names, p, options):
         physical = options["physical"]
         profile = make_profile(p, physical)
-        nu, mu, ux0 = (np.asarray(p[k], dtype=float) for k in ("nu", "mu", "ux0"))
+        f = lambda key: np.asarray(p[key], dtype=float)  # noqa: E731 - only what the group has
         if physical:
-            a = _contact_radius(profile, np.asarray(p["delta"], dtype=float))
-            e_star = np.asarray(p["E"], dtype=float) / (1.0 - nu ** 2)
+            a = _contact_radius(profile, f("delta"))
         else:
-            a, e_star = np.float64(1.0), None
+            a = np.float64(1.0)
+        out: dict[str, np.ndarray] = {}
+        if "contact_radius" in names:
+            out["contact_radius"] = a
+        pm_hat = ax.mean_pressure(a, profile)          # p_m / E*
+        e_star = f("E") / (1.0 - f("nu") ** 2) if physical and ("E" in p) else None
+        if "mean_pressure" in names:
+            out["mean_pressure"] = pm_hat * e_star if physical else pm_hat
+        if "normal_force" in names:
+            out["normal_force"] = profile.normal_force(a) * e_star
+        local = [n for n in names if n not in ("contact_radius", "mean_pressure", "normal_force")]
+        if not local:
+            return out
+
+        nu, mu, ux0 = f("nu"), f("mu"), f("ux0")
+        c = ax.stick_radius(a, nu, mu, ux0, profile)
+        if "stick_radius" in names:
+            out["stick_radius"] = c if physical else c / a
+        spatial = [n for n in local if n != "stick_radius"]
+        if not spatial:
+            return out
+        xs, ys = (f(k) * (1.0 if physical else a) for k in ("x", "y"))
         method = options["method"]
         if method == "auto":
             method = "closed" if profile.has_closed_form else "quadrature"
-        c = ax.stick_radius(a, nu, mu, ux0, profile)
-        pm_hat = ax.mean_pressure(a, profile)          # p_m / E*
         stress_scale = e_star if physical else 1.0 / pm_hat
-        out: dict[str, np.ndarray] = {}
 
         want_stress = [n for n in names if n in STRESS]
         if any(n in names for n in ("von_mises",) + PRINCIPAL):
             want_stress = list(STRESS)
-        xs = ys = None
-        if want_stress or "dpdz" in names or "region" in names:
-            xs = np.asarray(p["x"], dtype=float) * (1.0 if physical else a)
-            ys = np.asarray(p["y"], dtype=float) * (1.0 if physical else a)
         if want_stress:
             comps = tuple(n.removeprefix("sigma_") for n in want_stress)
             sig = ax.surface_stress(xs, ys, a, c, nu, mu, profile, components=comps, method=method,
@@ -135,14 +149,6 @@ def _evaluate(make_profile):
         if "dpdz" in names:
             g = ax.surface_dpdz(xs, ys, a, c, nu, mu, profile, method=method, rtol=options["rtol"])
             out["dpdz"] = g * (e_star if physical else a / pm_hat)
-        if "stick_radius" in names:
-            out["stick_radius"] = c if physical else c / a
-        if "mean_pressure" in names:
-            out["mean_pressure"] = pm_hat * e_star if physical else pm_hat
-        if "contact_radius" in names:
-            out["contact_radius"] = a
-        if "normal_force" in names:
-            out["normal_force"] = profile.normal_force(a) * e_star
         if "region" in names:
             out["region"] = _region(np.hypot(xs, ys), a, c, mu, ux0)
         if "validity" in names:
@@ -212,7 +218,7 @@ def _scenario(name, summary, geometry, make_profile, check=None):
     case = tuple(p.name for p in params if p.name not in SPATIAL)
     return Scenario(
         name=name, summary=summary, references=REFERENCE, parameters=params,
-        variables=_variables(case), evaluate=_evaluate(make_profile), physical_switch="E",
+        variables=_variables(case, tuple(p.name for p in geometry)), evaluate=_evaluate(make_profile), physical_switch="E",
         methods=("auto", "closed", "quadrature"),
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),
         check=check,

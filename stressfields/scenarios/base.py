@@ -156,4 +156,4 @@ def nonfinite_flag(*arrays: np.ndarray) -> np.ndarray:
 
 
 def _fmt(v: float) -> str:
-    return repr(int(v)) if float(v).is_integer() and abs(v) < 1e15 else repr(float(v))
+    return repr(int(v)) if float(v).is_integer() and abs(v) < 1e7 else f"{float(v):.10g}"
