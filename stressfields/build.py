@@ -31,7 +31,15 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
         if par.name not in recipe.values:
             continue
         value = recipe.values[par.name]
-        if par.name in recipe.swept:
+        if par.name in recipe.swept and par.choices:
+            # CF coordinate variables must be numeric: a sweep over choices is an int8 flag
+            # coordinate, with the names beside it as an auxiliary string coordinate
+            codes = np.arange(len(value), dtype=np.int8)
+            coords[par.name] = xr.Variable((par.name,), codes, {
+                "long_name": par.meaning, "flag_values": codes, "flag_meanings": " ".join(value)})
+            coords[f"{par.name}_name"] = xr.Variable((par.name,), np.asarray(value, dtype=object),
+                                                     {"long_name": f"{par.meaning} (name)"})
+        elif par.name in recipe.swept:
             coords[par.name] = xr.Variable((par.name,), value, cf.coord_attrs(par, physical))
         elif par.kind == ARRAY:
             fixed[par.name] = np.asarray(value)

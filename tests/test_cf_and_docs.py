@@ -27,10 +27,10 @@ def cf_failures(path: Path) -> list:
 
     CheckSuite.load_all_available_checkers()
     report = path.with_suffix(".cf.json")
-    ComplianceChecker.run_checker(str(path), ["cf:1.8"], 0, "lenient", output_filename=str(report),
-                                  output_format="json")
+    _, checker_errors = ComplianceChecker.run_checker(str(path), ["cf:1.8"], 0, "lenient",
+                                                      output_filename=str(report), output_format="json")
     result = json.loads(report.read_text())["cf:1.8"]
-    failures = []
+    failures = [("checker", "exceptions while checking", [])] if checker_errors else []
     for level in ("high_priorities", "medium_priorities", "low_priorities"):
         for item in result.get(level, []):
             if item["value"][0] < item["value"][1]:

@@ -3,5 +3,7 @@ from __future__ import annotations
 
 from .axisymmetric import AXISYMMETRIC, CONICAL, PARABOLIC
 from .base import Scenario
+from .graded import SCENARIOS as GRADED
+from .wavy import SCENARIOS as WAVY
 
-REGISTRY: dict[str, Scenario] = {s.name: s for s in (CONICAL, PARABOLIC, AXISYMMETRIC)}
+REGISTRY: dict[str, Scenario] = {s.name: s for s in (CONICAL, PARABOLIC, AXISYMMETRIC, *GRADED, *WAVY)}

@@ -1,0 +1,140 @@
+"""Private quadrature forms of the MDR rules (10)-(15) of Hess & Popov 2016 for any 1D profile.
+
+These are the general route (tabulated profiles) and the independent check of the closed forms.
+The 1D profile enters through a callable ``fn(x, **P)``: ``x`` carries one more trailing axis
+than the evaluation points and every entry of ``P`` (always including ``k``) is the matching
+per-point parameter with a trailing axis of length 1.
+
+Each integral is split at the profile's break points (spline knots of a tabulated profile, where
+the integrand is not smooth) and every piece is done by tanh-sinh.  On the piece that touches a
+singular end point the kernel (distance)^alpha is removed by the power substitution
+distance = L v^p, p = 1/(1+alpha) (sheet §0.3); elsewhere p = 1 (plain mapping).  Distances to
+the end points are formed without rounding (a - r is exact for r close to a; 1 - t comes from
+the rule).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import _quad
+from .material import cos_half_pi_k
+
+
+def _prepare(arrays: dict, mask=None):
+    """Broadcast, optionally select ``mask``, and add the trailing quadrature axis."""
+    b = dict(zip(arrays, np.broadcast_arrays(*[np.asarray(v, float) for v in arrays.values()])))
+    if mask is not None:
+        b = {key: v[mask] for key, v in b.items()}
+    return {key: v[..., None] for key, v in b.items()}
+
+
+def _pieces(lo, hi, breaks):
+    """Yield (x0, x1) per piece of [lo, hi] cut at ``breaks`` (empty pieces have x0 == x1)."""
+    edges = [lo] + [np.clip(b, lo, hi) for b in np.asarray(breaks, float)] + [hi]
+    for x0, x1 in zip(edges[:-1], edges[1:]):
+        yield x0, x1
+
+
+def _singular_piece(x0, x1, delta, alpha, p_sing, integrand_x, rtol, toward_left):
+    """int over [x0, x1] of integrand_x(x) * dist(x)^alpha, where dist = delta + (x - x0)
+    (toward_left) or delta + (x1 - x) (otherwise), delta >= 0 the distance of the piece to the
+    singular point.  The substitution (x - x0) = L v^p uses p = p_sing where delta == 0."""
+    L = x1 - x0
+    live = L > 0
+    # empty pieces: zero length, a harmless distance, nodes pinned inside the interval
+    Ls = np.where(live, L, 0.0)
+    delta = np.where(live, delta, 1.0)
+    p = np.where(delta == 0.0, p_sing, 1.0)
+
+    sing = delta == 0.0
+
+    def integrand(v, vc):
+        s = v ** p                                   # distance from the singular-side end / L
+        s = np.where(s < 1e-250, 0.0, s)             # denormal positions carry no precision
+        x = x0 + Ls * s if toward_left else x1 - Ls * s
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            # on the singular piece v^(p-1) (L v^p)^alpha = L^alpha exactly (p (1 + alpha) = 1);
+            # forming it from the factors would give 0 * inf once v^p underflows (k -> 1)
+            jac = np.where(sing, Ls ** alpha, v ** (p - 1.0) * (delta + Ls * s) ** alpha)
+            fx = integrand_x(x)          # (np.where branches not taken may overflow harmlessly)
+        return Ls * p * jac * fx
+
+    return _quad.integrate(integrand, rtol=rtol)
+
+
+def foundation_integral(a, fn, params, rtol, breaks=()):
+    """int_0^a x^k fn(x) dx (eq. 12 without the factor 2 c_N_star)."""
+    P = _prepare({"a": a, **params})
+    ae = P.pop("a")
+    k = P["k"]
+    total = 0.0
+    for x0, x1 in _pieces(np.zeros_like(ae), ae, breaks):
+        L = x1 - x0
+
+        def integrand(t, tc, x0=x0, L=L):
+            x = x0 + L * t
+            return L * x ** k * fn(x, **P)
+
+        total = total + _quad.integrate(integrand, rtol=rtol)
+    return total
+
+
+def pressure_integral(r, a, dg, params, rtol, breaks=()):
+    """(1/pi) int_r^a dg(x) (x^2 - r^2)^(-(1-k)/2) dx: eq. (13) with u'_1D = -g' on (0, a).
+
+    Zero for r >= a.  The singular factor (x - r)^(-(1-k)/2) is removed with p = 2/(1+k).
+    """
+    r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+    shape = np.broadcast(r, *params.values()).shape
+    m = np.broadcast_to(r < a, shape)
+    out = np.zeros(shape)
+    if not m.any():
+        return out
+    P = _prepare({"r": r, "a": a, **params}, m)
+    ri, ai, k = P.pop("r"), P.pop("a"), P["k"]
+    alpha = -0.5 * (1.0 - k)
+    # at the centre (r = 0, k > 0) both kernel factors are singular at x = 0: remove x^(-(1-k))
+    # as a whole (p = 1/k), otherwise (x - r)^(-(1-k)/2) with p = 2/(1+k)
+    centre = (ri == 0.0) & (k > 0.0)
+    alpha_s = np.where(centre, 2.0 * alpha, alpha)
+    p_s = np.where(centre, 1.0 / np.where(centre, k, 1.0), 2.0 / (1.0 + k))
+    total = 0.0
+    for x0, x1 in _pieces(ri, ai, breaks):
+        total = total + _singular_piece(
+            x0, x1, x0 - ri, alpha_s, p_s,
+            lambda x: dg(x, **P) * np.where(centre, 1.0, (x + ri) ** alpha), rtol, toward_left=True)
+    out[m] = total / np.pi
+    return out
+
+
+def displacement_integral(r, a, u1d, params, rtol, breaks=()):
+    """u_z(r) = (2/pi) cos(k pi/2) int_0^min(r,a) x^k u1d(x) (r^2 - x^2)^(-(1+k)/2) dx, eq. (15).
+
+    Outside (r > a) the kernel is regular but nearly singular as r -> a+ (distance r - x formed
+    from the exact r - a).  Inside (r <= a) this is the inverse transform (6) of u_1D, i.e.
+    d - f(r); the kernel (r - x)^(-(1+k)/2) is removed with p = 2/(1-k), and the vanishing
+    cos(k pi/2) times the growing p stays finite as k -> 1.
+    """
+    r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
+    shape = np.broadcast(r, *params.values()).shape
+    out = np.empty(shape)
+    outside = np.broadcast_to(r > a, shape)
+    centre = np.broadcast_to(r == 0.0, shape)
+    if centre.any():         # the kernel tends to a delta at x = 0: u_z(0) = u_1D(0) = d
+        P = _prepare({"r": r, **params}, centre)
+        P.pop("r")
+        out[centre] = u1d(np.zeros_like(P["k"]), **P)[:, 0]
+    for mask, upper in ((outside, "a"), (~outside & ~centre, "r")):
+        if not mask.any():
+            continue
+        P = _prepare({"r": r, "a": a, **params}, mask)
+        ri, ai, k = P.pop("r"), P.pop("a"), P["k"]
+        top = ai if upper == "a" else ri
+        alpha = -0.5 * (1.0 + k)
+        total = 0.0
+        for x0, x1 in _pieces(np.zeros_like(top), top, breaks):
+            total = total + _singular_piece(
+                x0, x1, ri - x1, alpha, 2.0 / (1.0 - k),
+                lambda x: x ** k * u1d(x, **P) * (ri + x) ** alpha, rtol, toward_left=False)
+        out[mask] = (2.0 / np.pi) * cos_half_pi_k(k[:, 0]) * total
+    return out

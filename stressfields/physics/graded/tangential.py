@@ -1,0 +1,172 @@
+"""Tangential contact with partial slip (Cattaneo-Mindlin) of power-law graded bodies.
+
+Hess & Popov 2016 (Facta Univ. Mech. Eng. 14(3) 251-268), eqs. (39)-(52), and the exact
+extension to f = A_n r^n of the formula sheet §6:
+    c/a = (1 - F_x/(mu F_N))^(1/(n+k+1)),   delta_x = mu (c_N/c_T) kappa A_n (a^n - c^n),
+    tau_x(r) = mu [p(r; a) - p(r; c)]                                          (45)
+(n = 2, A_n = 1/(2R): eqs. 49-51; Holl ratio nu = 1/(2+k): eq. 52).
+
+Bodies: body 1 is graded (E0, nu, k, c0).  Body 2 defaults to an identical body (``E0_2=None``,
+eqs. 46-47); ``E0_2=inf`` is rigid; a finite E0_2 with nu_2 an elastic graded body of the same k
+and c0.  The MDR solution is exact only where the normal and tangential problems decouple (see
+:func:`material.tangential_decoupled`); otherwise the functions raise ``ValueError`` unless
+``require_decoupled=False`` asks for the uncoupled approximation.
+Units: consistent system; delta_x in length, tau in pressure.  Every argument broadcasts.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import _mdr, normal
+from ._validate import check_interval, check_k, check_nu, check_positive
+from .material import c_N_star, c_T_star, tangential_decoupled
+from .profiles import g_quad
+
+__all__ = ["stick_radius", "stiffness_ratio", "max_tangential_displacement",
+           "tangential_displacement", "force_ratio_from_displacement", "shear_traction",
+           "normal_force", "stick_radius_quad", "tangential_displacement_quad"]
+
+
+def _pair(k, nu, E0, E0_2, nu_2, require_decoupled):
+    """Resolve body 2 and enforce the decoupling condition of sec. 5."""
+    k = check_k(k)
+    nu = check_nu(nu, k)
+    if E0_2 is None:                   # identical bodies (eqs. 46-47)
+        E0_ = 1.0 if E0 is None else E0
+        E0_2_, nu_2_ = E0_, nu
+    else:
+        if E0 is None and not np.all(np.isinf(E0_2)):
+            raise ValueError("E0 is required when an elastic body 2 (finite E0_2) is given")
+        E0_ = 1.0 if E0 is None else E0
+        E0_2_, nu_2_ = E0_2, nu_2
+    if require_decoupled and E0_2 is not None:
+        ok = tangential_decoupled(k, nu, E0=E0_, E0_2=E0_2_, nu_2=nu_2_)
+        if not np.all(ok):
+            kb, nub = (np.broadcast_to(v, ok.shape)[~ok].flat[0] for v in (k, nu))
+            rigid = np.all(np.isinf(E0_2))
+            raise ValueError(
+                f"nu = {float(nub)!r} (k = {float(kb)!r}) is outside the allowed range for which the normal and "
+                f"tangential problems decouple: "
+                + ("with a rigid body 2 it must be nu = 1/(2+k) = " + f"{1 / (2 + float(kb)):.12g}" if rigid else
+                   "two elastic bodies must be identical or both have nu = 1/(2+k) = " + f"{1 / (2 + float(kb)):.12g}")
+                + " (Hess & Popov 2016, sec. 5); pass require_decoupled=False for the uncoupled approximation")
+    return k, nu, E0_, E0_2_, nu_2_
+
+
+def stick_radius(a, Fx_over_muFN, *, k, n=2.0):
+    """Stick radius c(a, F_x/(mu F_N)) = a (1 - F_x/(mu F_N))^(1/(n+k+1)), eq. (51) [length of a].
+
+    Material independent.  F_x/(mu F_N) in [0, 1]; 1 is the onset of gross slip (c = 0).
+    """
+    a = check_positive("a", a)
+    F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
+    k = check_k(k)
+    n = check_positive("n", n)
+    return a * (1.0 - F) ** (1.0 / (n + k + 1.0))
+
+
+def stiffness_ratio(*, k, nu, E0=None, E0_2=None, nu_2=None, require_decoupled=True):
+    """c_N/c_T of the body pair: h_N/((1-nu^2) h_T) for identical bodies (eqs. 46-47, 49). Dimensionless."""
+    k, nu, E0_, E0_2_, nu_2_ = _pair(k, nu, E0, E0_2, nu_2, require_decoupled)
+    return c_N_star(k, nu, E0_, 1.0, E0_2_, nu_2_) / c_T_star(k, nu, E0_, 1.0, E0_2_, nu_2_)
+
+
+def max_tangential_displacement(a, *, k, nu, mu, n, A_n, E0=None, E0_2=None, nu_2=None,
+                                require_decoupled=True):
+    """delta_x,max = mu (c_N/c_T) kappa A_n a^n at the onset of gross slip, eq. (50) [length].
+
+    At nu = 1/(2+k) for both bodies, n = 2: (3+k)/2 mu a^2/R, eq. (52).
+    """
+    ratio = stiffness_ratio(k=k, nu=nu, E0=E0, E0_2=E0_2, nu_2=nu_2, require_decoupled=require_decoupled)
+    mu = check_positive("mu", mu, allow_zero=True)
+    return mu * ratio * normal.depth(a, k=k, n=n, A_n=A_n)
+
+
+def tangential_displacement(a, Fx_over_muFN, *, k, nu, mu, n, A_n, E0=None, E0_2=None, nu_2=None,
+                            require_decoupled=True):
+    """Relative tangential displacement delta_x = mu (c_N/c_T) kappa A_n (a^n - c^n), eq. (49) [length]."""
+    dmax = max_tangential_displacement(a, k=k, nu=nu, mu=mu, n=n, A_n=A_n, E0=E0, E0_2=E0_2,
+                                       nu_2=nu_2, require_decoupled=require_decoupled)
+    F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
+    # 1 - (c/a)^n without cancellation for small loads: -expm1(n/(n+k+1) log1p(-F))
+    k = np.asarray(k, float)
+    with np.errstate(divide="ignore"):           # F = 1: log1p(-1) = -inf, expm1(-inf) = -1 exactly
+        return dmax * -np.expm1(n / (n + k + 1.0) * np.log1p(-F))
+
+
+def force_ratio_from_displacement(delta_over_delta_max, *, k, n=2.0):
+    """F_x/(mu F_N) = 1 - (1 - delta_x/delta_x,max)^((n+k+1)/n), eq. (51) (second form). Dimensionless."""
+    D = check_interval("delta_over_delta_max", delta_over_delta_max, 0.0, 1.0)
+    k = check_k(k)
+    n = check_positive("n", n)
+    with np.errstate(divide="ignore"):
+        return -np.expm1((n + k + 1.0) / n * np.log1p(-D))
+
+
+def normal_force(a, *, k, nu, E0, c0, n, A_n, E0_2=None, nu_2=None):
+    """Normal force F_N(a) of the body pair (identical bodies by default: half the rigid-indenter value)."""
+    k_, nu_, E0_, E0_2_, nu_2_ = _pair(k, nu, E0, E0_2, nu_2, False)
+    return normal.normal_force(a, k=k_, nu=nu_, E0=E0, c0=c0, n=n, A_n=A_n, E0_2=E0_2_, nu_2=nu_2_)
+
+
+def shear_traction(r, a, Fx_over_muFN, *, k, nu, mu, E0, c0, n, A_n, E0_2=None, nu_2=None,
+                   require_decoupled=True):
+    """Shear traction tau_x(r) = mu [p(r; a) - p(r; c)], eqs. (44)-(45) [pressure].
+
+    p is the normal pressure of the body pair (c_N of eq. 46 for identical bodies).  tau = mu p in
+    the slip annulus c < r < a; finite at r = c (both terms are continuous there).
+    """
+    k_, nu_, E0_, E0_2_, nu_2_ = _pair(k, nu, E0, E0_2, nu_2, require_decoupled)
+    mu = check_positive("mu", mu, allow_zero=True)
+    c = stick_radius(a, Fx_over_muFN, k=k_, n=n)
+    kw = dict(k=k_, nu=nu_, E0=E0, c0=c0, n=n, A_n=A_n, E0_2=E0_2_, nu_2=nu_2_)
+    pc = np.where(np.broadcast_to(c, np.broadcast(c, r).shape) > 0,
+                  normal.pressure(r, np.where(c > 0, c, 1.0), **kw), 0.0)
+    return mu * (normal.pressure(r, a, **kw) - pc)
+
+
+# --------------------------------------------------------------------------- quadrature route
+
+def stick_radius_quad(a, Fx_over_muFN, profile, *, k, nu, E0, c0=1.0, E0_2=None, nu_2=None,
+                      require_decoupled=True, rtol=1e-10):
+    """Stick radius by vectorised bisection on eqs. (41)-(43) with quadrature; any profile object.
+
+    F_x(c) = 2 int_0^c c_T(x) delta_x dx + 2 mu int_c^a c_N(x) u_1D(x) dx with
+    delta_x = mu c_N(c) u_1D(c)/c_T(c) (eq. 42) and u_1D = g(a) - g(x), g by quadrature of eq. (5).
+    """
+    k_, nu_, E0_, E0_2_, nu_2_ = _pair(k, nu, E0, E0_2, nu_2, require_decoupled)
+    a = check_positive("a", a)
+    F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
+    cN = c_N_star(k_, nu_, E0_, c0, E0_2_, nu_2_)
+    cT = c_T_star(k_, nu_, E0_, c0, E0_2_, nu_2_)
+    a, F, k_, cN, cT = np.broadcast_arrays(a, F, k_, cN, cT)
+    u1d = normal._u1d(profile, rtol)
+    d = g_quad(a, profile, k=k_, rtol=rtol)
+    total = _mdr.foundation_integral(a, u1d, {"k": k_, "d": d}, rtol, profile.breaks)
+    FN_over_mu = 2.0 * cN * total
+
+    def ratio(s):                        # F_x/(mu F_N) at stick radius c = s a
+        c = s * a
+        uc = d - g_quad(c, profile, k=k_, rtol=rtol)
+        stick = 2.0 * cN * uc * c ** (1.0 + k_) / (1.0 + k_)          # 2 int_0^c c_T delta_x / mu
+        inner = _mdr.foundation_integral(c, u1d, {"k": k_, "d": d}, rtol, profile.breaks)
+        return (stick + 2.0 * cN * (total - inner)) / FN_over_mu
+
+    lo, hi = np.zeros(a.shape), np.ones(a.shape)
+    for _ in range(56):                  # bisection to 2^-56 in c/a
+        mid = 0.5 * (lo + hi)
+        above = ratio(mid) > F           # ratio decreases from 1 (c = 0) to 0 (c = a)
+        lo = np.where(above, mid, lo)
+        hi = np.where(above, hi, mid)
+    return 0.5 * (lo + hi) * a
+
+
+def tangential_displacement_quad(a, Fx_over_muFN, profile, *, k, nu, mu, E0, c0=1.0, E0_2=None,
+                                 nu_2=None, require_decoupled=True, rtol=1e-10):
+    """delta_x = mu c_N(c) u_1D(c)/c_T(c) (eq. 42) at the stick radius of :func:`stick_radius_quad`."""
+    c = stick_radius_quad(a, Fx_over_muFN, profile, k=k, nu=nu, E0=E0, c0=c0, E0_2=E0_2, nu_2=nu_2,
+                          require_decoupled=require_decoupled, rtol=rtol)
+    k_, nu_, E0_, E0_2_, nu_2_ = _pair(k, nu, E0, E0_2, nu_2, require_decoupled)
+    ratio = c_N_star(k_, nu_, E0_, c0, E0_2_, nu_2_) / c_T_star(k_, nu_, E0_, c0, E0_2_, nu_2_)
+    mu = check_positive("mu", mu, allow_zero=True)
+    return mu * ratio * (g_quad(a, profile, k=k_, rtol=rtol) - g_quad(c, profile, k=k_, rtol=rtol))

@@ -1,0 +1,332 @@
+"""Public kernels of the wavy (multisinusoidal) contact family.
+
+Tsukanov, I. Yu. (2018) "Partial contact of a rigid multisinusoidal wavy surface with an elastic
+half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467, as cleaned and
+verified in shared/formulas/seed002/formulas.md ("the sheet").  Plane strain, frictionless, rigid
+indenter, prescribed contact half-width a, continuous contact.
+
+Common arguments
+----------------
+x_over_a : array, x/a (any real; pressure is 0 for |x/a| > 1).
+two_a_over_lambda1 : array, 2a/lambda_1 in (0, 1).
+amplitudes, wavenumbers : 1-D harmonic table, gap g(x) = sum_i Delta_i (1 - cos(2 pi n_i x/lambda_1));
+    row 0 is the base wave (n = 1, Delta_1 > 0).  Only Delta_i/Delta_1 matters.
+periodic : True for the periodic surface (cot kernel), False for a single indenter (Cauchy kernel).
+n_harmonics : optional int array, use the first N rows of the table (default: all).
+rtol : series tolerance relative to sum_i |weight_i| ||C_i||_2 (see ``series``).
+max_terms : cap on the number of series terms (per contact width).
+
+All array arguments broadcast together.  Normalisation (sheet section 1): p* = pi E* Delta_1/lambda_1
+with E* = E/(1 - nu^2); lengths u_z, gap in units of Delta_1; x in units of a.
+Series quantities return ``(value, info)`` with info = {"n_terms", "error_estimate",
+"converged"} broadcast to the value's shape: n_terms sine terms were summed (highest order
+2*n_terms - 1); error_estimate (in the value's units) = bound of the truncated tail + an estimate
+of rounding; converged = error_estimate <= rtol * scale.  When rtol cannot be met (2a/lambda_1 -> 1
+with the length capped at max_terms, or rtol below rounding) the best value is returned with
+converged = False and the honest estimate.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import nonperiodic, periodic
+from . import profile as _profile
+from . import series, validity
+
+DEFAULT_RTOL = 1e-12
+DEFAULT_MAX_TERMS = 16384
+
+
+class _Context:
+    """Inputs validated, coefficient table built once, element -> table row map."""
+
+    def __init__(self, two_a_over_lambda1, amplitudes, wavenumbers, periodic_, n_harmonics,
+                 rtol, max_terms, build=True, weighted=False):
+        self.dr, self.n = _profile.harmonic_table(amplitudes, wavenumbers)
+        self.a_in = _profile.contact_angle(two_a_over_lambda1)
+        self.N_in = _profile.harmonic_counts(n_harmonics, len(self.n))
+        self.mod = periodic if periodic_ else nonperiodic
+        self.periodic = bool(periodic_)
+        ua, ia = np.unique(self.a_in, return_inverse=True)
+        uN, iN = np.unique(self.N_in, return_inverse=True)
+        self.ua, self.uN = ua, uN
+        self.row = np.asarray(ia).reshape(self.a_in.shape) * len(uN) + np.asarray(iN).reshape(self.N_in.shape)
+        self.table = None
+        if build:
+            self.table = series.build_table(ua, uN, self.dr, self.n, is_periodic=self.periodic,
+                                            rtol=rtol, max_terms=max_terms, weighted=weighted)
+        self._outside = None
+
+    def info(self, shape, rows=None, err=None):
+        rows = self.row if rows is None else rows
+        t = self.table
+        e = t.err[rows] if err is None else err
+        return {"n_terms": np.broadcast_to(t.K[rows], shape).copy(),
+                "error_estimate": np.broadcast_to(e, shape).copy(),
+                "converged": np.broadcast_to(t.converged[rows], shape).copy()}
+
+    def outside(self, rows):
+        """Periodic outside-contact integral table for the (unique) rows needed."""
+        rows = np.unique(rows)
+        if self._outside is None or not np.isin(rows, self._outside.rows).all():
+            self._outside = periodic.OutsideTable(self.table, self.dr, self.n, rows)
+        return self._outside
+
+
+def _ctx(two_a, amplitudes, wavenumbers, periodic_, n_harmonics, rtol, max_terms, build=True, weighted=False):
+    return _Context(two_a, amplitudes, wavenumbers, periodic_, n_harmonics, rtol, max_terms, build, weighted)
+
+
+# --------------------------------------------------------------------------------- pressure
+
+def pressure(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+             n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """Contact pressure p(x)/p*, zero for |x| > a.
+
+    Periodic: eqs. (10)-(12) with the DCT coefficients of the sheet (A.5-A.7); non-periodic:
+    Bessel series eq. (14).  Combined with E* (not the printed E/(2(1-nu^2))).
+    Returns (p_over_pstar, info).
+    """
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
+    t = np.abs(np.asarray(x_over_a, dtype=float))
+    shape = np.broadcast(t, c.row).shape
+    t, row, a = np.broadcast_arrays(t, c.row, c.a_in)
+    p = np.zeros(shape)
+    inside = t <= 1.0
+    p[inside] = series.sine_sum(c.table, row[inside], c.mod.theta_of_t(t[inside], a[inside]))
+    return p, c.info(shape, row)
+
+
+def pressure_shape(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                   n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """phi = p(x)/sqrt(1 - (x/a)^2) / p*, defined for |x/a| <= 1 only (ValueError otherwise).
+
+    At |x| = a it is the edge coefficient K/p*: nonperiodic K = E* sum_i Delta_i n_i (a n_i/2) J_0(a n_i),
+    periodic K = sqrt(a/(2 tan(a/2))) dW/da / pi (sheet section 6).  Its sign is test (P).
+    info["error_estimate"] bounds the series error of phi.
+    """
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms, weighted=True)
+    t = np.abs(np.asarray(x_over_a, dtype=float))
+    if np.any(~(t <= 1.0)):
+        raise ValueError("pressure_shape is defined for |x_over_a| <= 1 only")
+    shape = np.broadcast(t, c.row).shape
+    t, row, a = (np.ravel(v) for v in np.broadcast_arrays(t, c.row, c.a_in))
+    th = c.mod.theta_of_t(t, a)
+    phi = (series.sine_sum(c.table, row, th, over_sin=True) * c.mod.shape_ratio(t, a)).reshape(shape)
+    row = row.reshape(shape)
+    a = a.reshape(shape)
+    ratio_edge = c.mod.shape_ratio(np.ones_like(a), a)
+    return phi, c.info(shape, row, c.table.err_shape[row] * ratio_edge)
+
+
+def mean_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None):
+    """Mean (nominal) pressure p_inf/p*, p_inf = (1/lambda_1) int_{-a}^{a} p dx (eq. 6).
+
+    Closed forms, no series: non-periodic eq. (16); periodic the Legendre form of the sheet
+    (section 3).  For a single indenter p_inf is the load per unit length divided by lambda_1.
+    """
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, 1.0, 16, build=False)
+    return c.mod.mean_pressure(c.a_in, c.dr, c.n, c.N_in)
+
+
+def peak_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                  n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """p(0)/p*, the paper's p_max (eq. 21 for the non-periodic problem): sum_m (-1)^m D_m.
+    Returns (value, info)."""
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
+    t = c.table
+    sign = np.where(np.arange(t.D.shape[1]) % 2 == 0, 1.0, -1.0)
+    p0 = (t.D @ sign)[c.row]
+    return p0, c.info(p0.shape)
+
+
+def max_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                 n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """Global maximum of p over [-a, a]: (p_max/p*, x/a >= 0 where it occurs, info).
+
+    p is even; grid + golden-section search of the truncated series (the sheet finds it at
+    x = 0 in all its reference cases, but not in general for rough profiles)."""
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
+    rows = np.unique(c.row)
+    t_r, v_r = validity.extreme_over_contact(c.table, c.mod, rows, shape=False)
+    pos = np.searchsorted(rows, c.row)
+    return v_r[pos], t_r[pos], c.info(c.row.shape)
+
+
+# ----------------------------------------------------------------------------- displacement
+
+def approach(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None):
+    """delta/Delta_1 = u_z(0)/Delta_1 with C = 0 in eq. (5) (datum as in ``displacement``).
+    Closed forms from Betti's theorem (see periodic.approach, nonperiodic.approach)."""
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, 1.0, 16, build=False)
+    return c.mod.approach(c.a_in, c.dr, c.n, c.N_in)
+
+
+def _outside_gap(c, row, t, a):
+    """gap/Delta_1 for |x| > a (x already reduced to a < |x| <= pi for the periodic problem)."""
+    tau = np.sqrt(np.clip((t - 1.0) * a / (np.pi - a), 0.0, None))
+    return validity.gap_outside(c.table, c.outside(row) if c.periodic else None, row, tau, c.dr, c.n)
+
+
+def _reduced(c, x_over_a):
+    """|x|/a after folding the periodic problem into one period (|x| <= pi)."""
+    t = np.abs(np.asarray(x_over_a, dtype=float))
+    shape = np.broadcast(t, c.row).shape
+    t, row, a = (np.array(v) for v in np.broadcast_arrays(t, c.row, c.a_in))
+    if c.periodic:
+        x = np.abs(np.remainder(t * a + np.pi, 2.0 * np.pi) - np.pi)
+        t = x / a
+    return shape, t, row, a
+
+
+def separation(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+               n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """Gap after loading, (g(x) + u_z(x) - u_z(0))/Delta_1: 0 inside the contact; negative
+    values outside mean the rigid profile would penetrate the surface (test (G)).
+
+    Non-periodic: closed form from integrating eq. (14)'s Cauchy transform off the cut,
+    (u_z(x) - u_z(a))/Delta_1 = -a sum_m D_m G_{2m+1}(x/a) (validity.gap_outside);
+    periodic: the same transform in r = tan(x/2)/tan(a/2), integrated by Gauss-Legendre panels
+    (periodic.OutsideTable).  Returns (gap_over_Delta1, info); error_estimate (Delta_1 units) is the
+    slope series' error bound times (|x| - a); the panel quadrature error (< 1e-13 against
+    Westergaard's closed form and brute-force quadrature in the tests) is not included.
+    """
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
+    shape, t, row, a = _reduced(c, x_over_a)
+    out = np.zeros(shape)
+    o = t > 1.0
+    if o.any():
+        out[o] = _outside_gap(c, row[o], t[o], a[o])
+    # |u_z' error| <= tail of sum |D_m| (|w^k| <= 1), integrated over |x| - a
+    err = c.table.err[row] * np.maximum(t - 1.0, 0.0) * a
+    return out, c.info(shape, row, err)
+
+
+def displacement(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                 n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """Surface displacement u_z(x)/Delta_1, positive into the body, eq. (5) with C = 0.
+
+    Datum (where the constant is fixed): periodic kernel ln|2 sin((x - xi)/2)|, so u_z has zero
+    mean over one period; non-periodic kernel ln|x - xi| with lengths in units where
+    lambda_1 = 2 pi (x = 2 pi x_phys/lambda_1), i.e. u_z = -(2/(pi E*)) int p(xi) ln|x - xi| dxi.
+    These match reference_points.json (uz0_over_Delta1).  Inside the contact
+    u_z = u_z(0) - g(x) (closed form); outside u_z = u_z(0) - g(x) + gap(x) (see ``separation``).
+    Returns (uz_over_Delta1, info).
+    """
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
+    shape, t, row, a = _reduced(c, x_over_a)
+    delta = np.broadcast_to(c.mod.approach(c.a_in, c.dr, c.n, c.N_in), shape)
+    N = c.table.N[row]
+    uz = delta - _profile.gap(t * a, c.dr, c.n, N)
+    o = t > 1.0
+    if o.any():
+        uz[o] += _outside_gap(c, row[o], t[o], a[o])
+    err = c.table.err[row] * np.maximum(t - 1.0, 0.0) * a
+    return uz, c.info(shape, row, err)
+
+
+def initial_gap(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics=None):
+    """g(x)/Delta_1 = sum_{i<N} (Delta_i/Delta_1)(1 - cos n_i x), x = a * x_over_a (eq. 3)."""
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, True, n_harmonics, 1.0, 16, build=False)
+    x = np.asarray(x_over_a, dtype=float) * c.a_in
+    return _profile.gap(x, c.dr, c.n, np.broadcast_to(c.N_in, np.broadcast(x, c.N_in).shape))
+
+
+# --------------------------------------------------------------------------------- validity
+
+def contact_validity(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                     n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS, atol=1e-10):
+    """Exact admissibility of the continuous-contact solution (sheet section 6).
+
+    Returns a dict of arrays (shape of broadcast(a, N)):
+      ok                    -- pressure_ok & gap_ok
+      pressure_ok           -- (P) min over [-a, a] of phi = p/sqrt(1 - (x/a)^2) >= -atol  (p* units)
+      gap_ok                -- (G) min gap for a < |x| <= pi >= -atol  (Delta_1 units)
+      min_phi_over_pstar, x_of_min_phi_over_a
+      min_gap_over_Delta1, x_of_min_gap_over_a  (searched from x - a = 1e-6 (pi - a) on)
+      edge_phi_over_pstar   -- phi at |x| = a (edge coefficient K/p*)
+      n_terms, error_estimate (bound on the series error of phi), converged
+    atol absorbs rounding only; the series error is reported, not added.
+    """
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms, weighted=True)
+    rows = np.unique(c.row)
+    t_phi, v_phi = validity.extreme_over_contact(c.table, c.mod, rows, shape=True)
+    outside = c.outside(rows) if c.periodic else None
+    t_gap, v_gap = validity.min_gap_outside(c.table, outside, rows, c.dr, c.n)
+    a_r = c.table.a[rows]
+    edge = (c.table.D[rows] @ (2.0 * np.arange(c.table.D.shape[1]) + 1.0)) * c.mod.shape_ratio(np.ones_like(a_r), a_r)
+    pos = np.searchsorted(rows, c.row)
+    take = lambda v: v[pos]
+    p_ok, g_ok = v_phi >= -atol, v_gap >= -atol
+    inf = c.info(c.row.shape, err=c.table.err_shape[c.row] * c.mod.shape_ratio(np.ones_like(c.a_in), c.a_in))
+    return {"ok": take(p_ok & g_ok), "pressure_ok": take(p_ok), "gap_ok": take(g_ok),
+            "min_phi_over_pstar": take(v_phi), "x_of_min_phi_over_a": take(t_phi),
+            "min_gap_over_Delta1": take(v_gap), "x_of_min_gap_over_a": take(t_gap),
+            "edge_phi_over_pstar": take(edge), **inf}
+
+
+def continuous_contact(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                       n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS, atol=1e-10):
+    """True where the continuous-contact solution is physical: (P) and (G) of the sheet, section 6.
+    Boolean array of shape broadcast(two_a_over_lambda1, n_harmonics)."""
+    return contact_validity(two_a_over_lambda1, amplitudes, wavenumbers, periodic=periodic,
+                            n_harmonics=n_harmonics, rtol=rtol, max_terms=max_terms, atol=atol)["ok"]
+
+
+def johnson_parameter(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None,
+                      per_harmonic=False):
+    """Johnson parameter as corrected in the sheet (section 6):
+
+        chi_i = pi E* Delta_i / (lambda_i p_h),  p_h = 2 p_inf lambda_1/(pi a)  (Hertz peak)
+              = |Delta_i/Delta_1| n_i a / (4 p_inf/p*)     (a in lambda_1 = 2 pi units),
+
+    p_inf of the chosen problem.  Default: the largest over the ripples 2 <= i <= N (0 where
+    N = 1: no ripple on the base wave).  per_harmonic=True: array (..., len(table)) of chi_i
+    (i = 1 included; 0 for rows beyond N).  The paper's criterion chi < 1 is a heuristic only --
+    neither necessary nor sufficient; decide with ``continuous_contact``.
+    """
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, 1.0, 16, build=False)
+    pinf = c.mod.mean_pressure(c.a_in, c.dr, c.n, c.N_in)
+    a = np.broadcast_to(c.a_in, pinf.shape)
+    N = np.broadcast_to(c.N_in, pinf.shape)
+    chi = np.stack([np.where(N > i, np.abs(c.dr[i]) * c.n[i] * a / (4.0 * pinf), 0.0)
+                    for i in range(len(c.n))], axis=-1)
+    if per_harmonic:
+        return chi
+    return np.max(chi[..., 1:], axis=-1) if len(c.n) > 1 else np.zeros(pinf.shape)
+
+
+# ---------------------------------------------------------------------- paper approximations
+
+def approximate_pressure_eq18(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics=None,
+                              n_terms=None):
+    """The paper's approximation (18), non-periodic: NOT accurate (exact only at x = 0; errors up
+    to 0.9 Delta n, sheet section 4).  For benchmarks of its error only; p/p*, 0 for |x| > a."""
+    return _approximate(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, n_harmonics, 18, n_terms)
+
+
+def approximate_pressure_eq20(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics=None):
+    """The paper's approximation (20) as reconstructed in the sheet, non-periodic: NOT accurate
+    (errors 0.15-0.9 Delta n even at x = 0).  For benchmarks of its error only; p/p*."""
+    return _approximate(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, n_harmonics, 20, None)
+
+
+def _approximate(x_over_a, two_a, amplitudes, wavenumbers, n_harmonics, eq, n_terms):
+    from scipy.special import j0, j1, jv
+
+    c = _ctx(two_a, amplitudes, wavenumbers, False, n_harmonics, 1.0, 16, build=False)
+    s = np.asarray(x_over_a, dtype=float)
+    shape = np.broadcast(s, c.a_in, c.N_in).shape
+    s, a, N = np.broadcast_arrays(s, c.a_in, c.N_in)
+    root = np.sqrt(np.clip(1.0 - s * s, 0.0, None))
+    out = np.zeros(shape)
+    for i in range(len(c.n)):
+        z = a * c.n[i]
+        if eq == 18:
+            K = n_terms or int(np.max(z) / 2 + 2 * np.cbrt(np.max(z)) + 20)
+            acc = sum(jv(2 * j + 1, z) * np.cos((2 * j + 1) * s) for j in range(K))
+        else:
+            acc = j1(z) + 0.5 * np.cos((z + 1.0) * np.sin(s)) - 0.5 * j0(z + 1.0)
+        out += np.where(N > i, 2.0 * c.dr[i] * c.n[i] * root * acc, 0.0)
+    return np.where(np.abs(s) <= 1.0, out, 0.0)

@@ -1,0 +1,241 @@
+"""Truncated sine series shared by the periodic and non-periodic solutions.
+
+Both of Tsukanov's (2018) solutions have the same form once harmonics are combined
+(formula sheet seed002, sections 3-4):
+
+    p(x)/p* = sum_{m>=0} D_m sin((2m+1) theta),     D_m = 2 sum_i (Delta_i/Delta_1) n_i C_im,
+
+* periodic, eqs. (10)-(12): C_im = A_{i,2m+1}, the odd Chebyshev coefficients of
+  phi_i(s) = sin(2 n_i arctan(s tan(a/2)))/2, and cos(theta) = tan(x/2)/tan(a/2);
+* non-periodic, eq. (14): C_im = (-1)^m J_{2m+1}(a n_i), and cos(theta) = x/a.
+
+(The factor 2 is E*/p* with p* = E* Delta_1/2: the sheet's corrected combining factor E*.)
+Only the coefficients and the map x -> theta differ, so truncation, error estimates and
+evaluation live here once.
+
+Truncation.  For each contact angle the coefficients are computed on a window of L terms
+(L from the sheet's section-9 laws), and the number of terms K kept is the smallest with
+
+    tail(K) = sum_{m>=K} sum_i |w_i C_im|  (+ geometric extrapolation beyond the window)
+            <= rtol * sum_i w_i ||C_i||_2 .
+
+tail(K) bounds |p - p_K|/p* pointwise (|sin| <= 1); plus rounding terms (coefficient noise,
+summation) it is returned as the error estimate, and ``converged`` means the estimate is
+<= rtol * scale.
+When the tail is not small inside the window, the window is doubled, up to ``max_terms``;
+past that the row is returned with ``converged = False`` and the (large) honest estimate.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .profile import EPS
+
+#: rows of terms evaluated at once (memory ~ 8 bytes * elements * block)
+_BLOCK_ELEMENTS = 1 << 21
+
+
+@dataclass
+class SeriesTable:
+    """Combined coefficients for rows (a, N): row = ia * len(N_values) + iN."""
+
+    periodic: bool
+    a: np.ndarray          # (R,) contact angle of each row (lambda_1 = 2 pi)
+    N: np.ndarray          # (R,) harmonic count of each row
+    D: np.ndarray          # (R, Kmax) combined coefficients, zero beyond K
+    K: np.ndarray          # (R,) terms kept
+    err: np.ndarray        # (R,) bound of |p - p_K| / p*
+    err_shape: np.ndarray  # (R,) bound of the error of p/sin(theta) (weights 2m+1)
+    converged: np.ndarray  # (R,) tail <= rtol * scale reached
+    scale: np.ndarray      # (R,) sum_i w_i ||C_i||_2, the size rtol refers to
+
+
+def _module(is_periodic):
+    # imported here: periodic.py uses this module's evaluators (no import cycle at load time)
+    from . import nonperiodic, periodic
+    return periodic if is_periodic else nonperiodic
+
+
+def _pow2(v, lo=16):
+    return np.maximum(lo, 2 ** np.ceil(np.log2(np.maximum(v, 1.0)))).astype(int)
+
+
+def _truncate(wC, N_values, rtol, window_full, noise, weighted):
+    """Choose K for every (a, N) of one window; see the module docstring."""
+    L = wC.shape[-1]
+    cum_abs = np.cumsum(np.abs(wC), axis=1)[:, N_values - 1, :]          # (na, UN, L)
+    D = np.cumsum(wC, axis=1)[:, N_values - 1, :]
+    scale = np.cumsum(np.sqrt(np.sum(wC * wC, axis=-1)), axis=1)[:, N_values - 1]
+    # DCT coefficients level off at an absolute rounding plateau (~eps/10 max|phi|), which is
+    # not a truncation tail; it is measured on the last quarter of the window (if the series
+    # has not reached it there, the tail test below fails and the window grows).  Bessel
+    # values are accurate relative to themselves: no plateau.
+    plateau = np.median(cum_abs[..., 3 * L // 4:], axis=-1) if noise else np.zeros(scale.shape)
+    plateau = np.where(plateau <= 16 * EPS * scale, plateau, 0.0)  # still decaying: no plateau yet
+    T = np.where(cum_abs > 8.0 * plateau[..., None], cum_abs, 0.0)
+    last, prev = T[..., -1], T[..., -9]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = np.where(prev > 0, (last / prev) ** 0.125, 0.0)
+    q = np.clip(np.nan_to_num(q), 0.0, 0.999)
+    beyond = last * q / (1.0 - q)
+    tail = np.cumsum(T[..., ::-1], axis=-1)[..., ::-1] + beyond[..., None]  # tail[K] = sum_{m>=K}
+    tail = np.concatenate([tail, beyond[..., None]], axis=-1)              # tail[L]
+    k = 2.0 * np.arange(L) + 1.0                                           # 2m+1
+    Tw = T * k[None, None, :]
+    tail_w = np.cumsum(Tw[..., ::-1], axis=-1)[..., ::-1]
+    tail_w = np.concatenate([tail_w, np.zeros_like(beyond)[..., None]], axis=-1)
+    tail_w += (beyond * (2 * L + 1))[..., None]  # crude but honest: beyond-window terms weighted by 2L+1
+
+    # rounding, without which the estimate could claim 0: the plateau noise in each of K kept
+    # coefficients (weight 1, or 2m+1 for p/sin(theta), added as a random walk), plus
+    # summation rounding of K terms, eps sqrt(K) sum_{m<K} |D_m| (random-walk size)
+    zero = np.zeros_like(beyond)[..., None]
+    head = np.concatenate([zero, np.cumsum(cum_abs, axis=-1)], axis=-1)
+    head_w = np.concatenate([zero, np.cumsum(cum_abs * k, axis=-1)], axis=-1)
+    n = np.arange(L + 1)
+    # (p also feels theta's own rounding through sin((2m+1) theta): eps sum (2m+1)|D_m|)
+    floor = plateau[..., None] * n + EPS * (np.sqrt(n + 1) * head + head_w) + 4 * EPS * scale[..., None]
+    floor_w = 2 * plateau[..., None] * n ** 1.5 + EPS * np.sqrt(n + 1) * head_w + 4 * EPS * scale[..., None]
+    total, total_w = tail + floor, tail_w + floor_w                        # estimates for each K
+    crit_tail, crit = (tail_w, total_w) if weighted else (tail, total)
+
+    tol = (rtol * scale)[..., None]
+    window = slice(1, L - max(2, L // 8) + 1)  # keep part of the window beyond K as evidence
+    found = (crit_tail[..., window] <= tol).any(axis=-1)  # truncation reached: a longer window won't help
+    ok = crit[..., window] <= tol
+    K = np.where(ok.any(axis=-1), 1 + np.argmax(ok, axis=-1),
+                 np.where(found, 1 + np.argmin(crit[..., window], axis=-1), L))
+    take = lambda arr: np.take_along_axis(arr, K[..., None], axis=-1)[..., 0]
+    return dict(D=D, K=K, err=take(total), err_shape=take(total_w), converged=take(crit) <= tol[..., 0],
+                scale=scale, done=found.all(axis=1) | window_full)
+
+
+def build_table(a_values, N_values, delta_ratio, n, *, is_periodic, rtol, max_terms, weighted=False):
+    """Coefficient table for every pair (a_values[ia], N_values[iN]).
+
+    weighted=True truncates on the error of p/sin(theta) (terms weighted by 2m+1, the edge
+    coefficient's sensitivity) instead of p: used by the validity test.
+    Loops only over window sizes (powers of two), never over points.
+    """
+    if not rtol > 0:
+        raise ValueError("rtol must be positive")
+    if max_terms < 16:
+        raise ValueError("max_terms must be >= 16")
+    mod = _module(is_periodic)
+    a_values = np.asarray(a_values, dtype=float)
+    N_values = np.asarray(N_values, dtype=int)
+    na, UN = a_values.size, N_values.size
+    w = 2.0 * delta_ratio * n
+    n_max = np.max(n[: np.max(N_values)])
+    L = np.minimum(_pow2(1.25 * mod.window_terms(a_values, n_max, rtol) + 8), _pow2(max_terms))
+    results = [None] * na
+    pending = np.arange(na)
+    while pending.size:
+        still = []
+        for Lw in np.unique(L[pending]):
+            idx = pending[L[pending] == Lw]
+            C = mod.coefficients(a_values[idx], n, int(Lw))               # (k, Nh, Lw)
+            r = _truncate(w[None, :, None] * C, N_values, rtol, Lw >= max_terms, mod.COEFFICIENT_NOISE, weighted)
+            for j, ia in enumerate(idx):
+                if r["done"][j]:
+                    results[ia] = {key: val[j] for key, val in r.items()}
+                else:
+                    still.append(ia)
+        pending = np.asarray(still, dtype=int)
+        L[pending] = np.minimum(2 * L[pending], _pow2(max_terms))
+    K = np.stack([res["K"] for res in results]).reshape(-1)
+    Kmax = int(K.max())
+    D = np.zeros((na * UN, Kmax))
+    for ia, res in enumerate(results):
+        for iN in range(UN):
+            k = res["K"][iN]
+            D[ia * UN + iN, :k] = res["D"][iN, :k]
+    cat = lambda key: np.stack([res[key] for res in results]).reshape(-1)
+    return SeriesTable(periodic=is_periodic, a=np.repeat(a_values, UN), N=np.tile(N_values, na),
+                       D=D, K=K, err=cat("err"), err_shape=cat("err_shape"),
+                       converged=cat("converged"), scale=cat("scale"))
+
+
+def _blocks(Ks):
+    """Yield (n_active, m0, m1): elements sorted by decreasing K need terms m0..m1-1."""
+    m0 = 0
+    Kmax = int(Ks[0]) if Ks.size else 0
+    while m0 < Kmax:
+        n_act = int(np.searchsorted(-Ks, -m0, side="left"))  # number of elements with K > m0
+        B = int(max(1, min(512, _BLOCK_ELEMENTS // max(n_act, 1))))
+        m1 = min(m0 + B, Kmax)
+        yield n_act, m0, m1
+        m0 = m1
+
+
+def _sorted(K_el, row, *arrays):
+    """Flatten and order elements by decreasing number of terms (active prefix per block)."""
+    row = np.asarray(row).reshape(-1)
+    K_el = np.asarray(K_el).reshape(-1)
+    order = np.argsort(-K_el, kind="stable")
+    return order, K_el[order], row[order], [np.asarray(a, dtype=float).reshape(-1)[order] for a in arrays]
+
+
+def _gather(table, row_s, n_act, m0, m1):
+    return table.D[row_s[:n_act, None], np.arange(m0, m1)[None, :]]
+
+
+def sine_sum(table, row, theta, *, over_sin=False):
+    """sum_m D[row, m] sin((2m+1) theta), or with each term divided by sin(theta)
+    (= U_2m(cos theta), equal to 2m+1 at theta = 0).  theta in [0, pi/2]."""
+    shape = np.broadcast(row, theta).shape
+    row, theta = np.broadcast_arrays(row, theta)
+    order, Ks, row_s, (th,) = _sorted(table.K[row], row, theta)
+    out = np.zeros(th.size)
+    st = np.sin(th)
+    for n_act, m0, m1 in _blocks(Ks):
+        k = 2.0 * np.arange(m0, m1) + 1.0
+        s = np.sin(th[:n_act, None] * k[None, :])
+        if over_sin:
+            s = np.where(st[:n_act, None] > 0, s / np.where(st > 0, st, 1.0)[:n_act, None], k[None, :])
+        out[:n_act] += np.sum(_gather(table, row_s, n_act, m0, m1) * s, axis=1)
+    res = np.empty_like(out)
+    res[order] = out
+    return res.reshape(shape)
+
+
+def power_sum(table, row, w):
+    """sum_m D[row, m] w^(2m+1) for 0 <= w <= 1 (outside-contact slope, periodic)."""
+    shape = np.broadcast(row, w).shape
+    row, w = np.broadcast_arrays(row, w)
+    w = np.asarray(w, dtype=float)
+    # terms with w^(2m+1) < 1e-18 cannot matter (|D_m| <= sum_i |w_i|): skip them per element
+    with np.errstate(divide="ignore"):
+        m_need = np.where(w < 1.0, np.ceil(0.5 * (np.log(1e-18) / np.log(np.clip(w, 1e-300, 1.0 - 1e-16)) - 1.0)) + 1, np.inf)
+    K_el = np.minimum(table.K[row], np.maximum(m_need, 1)).astype(int)
+    order, Ks, row_s, (ws,) = _sorted(K_el, row, w)
+    out = np.zeros(ws.size)
+    for n_act, m0, m1 in _blocks(Ks):
+        k = 2.0 * np.arange(m0, m1) + 1.0
+        out[:n_act] += np.sum(_gather(table, row_s, n_act, m0, m1) * ws[:n_act, None] ** k[None, :], axis=1)
+    res = np.empty_like(out)
+    res[order] = out
+    return res.reshape(shape)
+
+
+def log_integral_sum(table, row, eta):
+    """sum_m D[row, m] G_{2m+1}, G_k = int_1^t w^k dt = (1/2)[(1-w^(k-1))/(k-1) - (1-w^(k+1))/(k+1)],
+    w = exp(-eta), t = cosh(eta) (non-periodic, outside the contact); G_1 = (eta - (1-w^2)/2)/2."""
+    shape = np.broadcast(row, eta).shape
+    row, eta = np.broadcast_arrays(row, eta)
+    order, Ks, row_s, (es,) = _sorted(table.K[row], row, eta)
+    out = np.zeros(es.size)
+    for n_act, m0, m1 in _blocks(Ks):
+        k = 2.0 * np.arange(m0, m1) + 1.0
+        e = es[:n_act, None]
+        km1 = np.where(k > 1, k - 1, 1.0)
+        # expm1 keeps the O(eta^2) result accurate next to the edge (eta -> 0)
+        G = 0.5 * (-np.expm1(-km1 * e) / km1 + np.expm1(-(k + 1) * e) / (k + 1))
+        G = np.where(k[None, :] > 1, G, 0.5 * (e + 0.5 * np.expm1(-2.0 * e)))
+        out[:n_act] += np.sum(_gather(table, row_s, n_act, m0, m1) * G, axis=1)
+    res = np.empty_like(out)
+    res[order] = out
+    return res.reshape(shape)

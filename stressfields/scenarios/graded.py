@@ -1,0 +1,2 @@
+"""Power-law graded half-space scenarios (filled in by the graded family)."""
+SCENARIOS: tuple = ()

@@ -1,0 +1,2 @@
+"""Multisinusoidal wavy contact scenario (filled in by the wavy family)."""
+SCENARIOS: tuple = ()
