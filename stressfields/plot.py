@@ -5,6 +5,7 @@
     x = "x"                  # the horizontal dimension
     hue = "mu"               # one curve per value (line plots)
     variables = ["sigma_xx", "dpdz"]   # one panel each
+    ylim = [-20.0, 20.0]     # optional vertical range of line plots
 Other dimensions are held at their first value.
 """
 from __future__ import annotations
@@ -31,26 +32,38 @@ def quicklook(path: str | Path, recipe) -> Path:
         hue = spec.get("hue")
         ncol = min(3, max(1, len(names)))
         nrow = -(-len(names) // ncol)
-        fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol, 3.4 * nrow), squeeze=False)
+        fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol + 1.0, 3.8 * nrow + 0.4), squeeze=False)
         for ax, name in zip(axes.flat, names):
             da = ds[name]
             keep = {xdim, hue} if kind == "line" else {"x", "y"}
             da = da.isel({d: 0 for d in da.dims if d not in keep})
+            label = _label(da)
             if kind == "map":
-                da.transpose("y", "x").plot(ax=ax, robust=True)
+                da.transpose("y", "x").plot(ax=ax, robust=True, cbar_kwargs={"label": label})
                 ax.set_aspect("equal")
+                ax.set_ylabel(_label(ds["y"]))
             elif hue in da.dims:
                 for value in da[hue].values:
-                    da.sel({hue: value}).plot(ax=ax, x=xdim, label=f"{hue} = {value}", lw=1)
+                    da.sel({hue: value}).plot(ax=ax, x=xdim, label=f"{hue} = {value:g}", lw=1)
                 ax.legend(fontsize=7)
+                ax.set_ylabel(label)
             else:
                 da.plot(ax=ax, x=xdim, lw=1)
-            ax.set_title(name, fontsize=9)
+                ax.set_ylabel(label)
+            ax.set_xlabel(_label(ds[xdim if kind == "line" else "x"]))
+            ax.set_title(da.attrs.get("long_name", name), fontsize=7, wrap=True)
+            if "ylim" in spec and kind == "line":
+                ax.set_ylim(*spec["ylim"])
         for ax in list(axes.flat)[len(names):]:
             ax.set_visible(False)
-        fig.suptitle(recipe.title, fontsize=10)
+        fig.suptitle(recipe.title, fontsize=9, wrap=True)
         fig.tight_layout()
         png = path.with_suffix(".png")
         fig.savefig(png, dpi=90)
         plt.close(fig)
     return png
+
+
+def _label(da) -> str:
+    units = da.attrs.get("units")
+    return f"{da.name} [{units}]" if units else str(da.name)

@@ -34,7 +34,7 @@ from .scenarios.base import ARRAY, Parameter, Scenario
 TOP_KEYS = ("scenario", "title", "parameters", "output", "method", "plot")
 OUTPUT_KEYS = ("variables", "chunks")
 METHOD_KEYS = ("method", "rtol")
-PLOT_KEYS = ("x", "variables", "hue", "kind")
+PLOT_KEYS = ("x", "variables", "hue", "kind", "ylim")
 RTOL_RANGE = (1e-14, 1e-2)
 MAX_SWEEP = 100_000_000
 
