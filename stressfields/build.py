@@ -88,9 +88,10 @@ def _groups(recipe: Recipe) -> dict[tuple[str, ...], list[str]]:
     """Requested variables grouped by their dimensions (in declaration order)."""
     scen = recipe.scenario
     names = list(recipe.variables)
-    requested_dims = {scen.variable(n).dims for n in names}
+    # an always-on variable (a validity flag) joins whenever a requested variable spans its dims
+    requested_dims = [set(scen.variable(n).dims or ()) for n in names]
     names += [v.name for v in scen.variables_in(recipe.physical)
-              if v.always and v.dims in requested_dims and v.name not in names]
+              if v.always and v.name not in names and any(set(v.dims or ()) <= d for d in requested_dims)]
     groups: dict[tuple[str, ...], list[str]] = {}
     for name in names:
         deps = scen.variable(name).dims

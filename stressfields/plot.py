@@ -43,8 +43,10 @@ def quicklook(path: str | Path, recipe) -> Path:
                 ax.set_aspect("equal")
                 ax.set_ylabel(_label(ds["y"]))
             elif hue in da.dims:
-                for value in da[hue].values:
-                    da.sel({hue: value}).plot(ax=ax, x=xdim, label=f"{hue} = {value:g}", lw=1)
+                names_ = ds[f"{hue}_name"].values if f"{hue}_name" in ds else None
+                for i, value in enumerate(da[hue].values):
+                    text = names_[i] if names_ is not None else f"{hue} = {value:g}"
+                    da.sel({hue: value}).plot(ax=ax, x=xdim, label=text, lw=1)
                 ax.legend(fontsize=7)
                 ax.set_ylabel(label)
             else:

@@ -123,12 +123,15 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     physical = scen.physical_switch is not None and scen.physical_switch in params
     mode = "physical" if physical else "normalised"
     values: dict[str, Any] = {}
+    rejected: set[str] = set()
     for key, raw in params.items():
         if key not in declared:
             problems.append(f"unknown parameter '{key}' for scenario '{name}'; allowed: {', '.join(declared)}")
             continue
         value = _parse_value(declared[key], raw, problems)
-        if value is not None:
+        if value is None:
+            rejected.add(key)   # already reported: not "missing" as well
+        else:
             values[key] = value
     # applicability: mode and `when` conditions
     for key in list(values):
@@ -149,7 +152,7 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
                 problems.append(f"parameter '{key}' is only used when {cond}")
             del values[key]
     for par in scen.parameters:
-        if par.name not in values and _applies(par, values, declared, mode) and (
+        if par.name not in values and par.name not in rejected and _applies(par, values, declared, mode) and (
                 par.required or (par.mode == "physical" and physical)):
             problems.append(f"missing parameter '{par.name}' ({par.meaning}; {par.allowed()}"
                             f"{', in ' + par.units_in(physical) if par.units_in(physical) != '1' else ''})")
@@ -226,7 +229,7 @@ def _parse_value(par: Parameter, raw, problems: list[str]):
                 problems.append(f"{key} sweep {raw!r} repeats a value")
                 return None
             return np.array(items, dtype=object)
-        arr = np.asarray(items, dtype=np.int64 if par.kind == "int" else np.float64)
+        arr = np.asarray(items, dtype=np.int32 if par.kind == "int" else np.float64)  # CF-1.8: no int64
         if len(np.unique(arr)) != len(arr):
             problems.append(f"{key} sweep {raw!r} repeats a value; sweep values must be distinct")
             return None
@@ -237,7 +240,7 @@ def _parse_value(par: Parameter, raw, problems: list[str]):
         return None
     if par.choices:
         return raw
-    return int(raw) if par.kind == "int" else float(raw)
+    return np.int32(raw) if par.kind == "int" else float(raw)
 
 
 def _expand_sweep(key: str, raw, problems: list[str]):

@@ -1,2 +1,210 @@
-"""Multisinusoidal wavy contact scenario (filled in by the wavy family)."""
-SCENARIOS: tuple = ()
+"""Rigid multisinusoidal wavy surface pressed on an elastic half-plane (plane strain, frictionless),
+in continuous contact of prescribed half-width a: scenario `wavy`.
+
+Profile (initial gap) g(x) = sum_i Delta_i (1 - cos(2 pi n_i x/lambda_1)), the harmonic table
+(`amplitudes`, `wavenumbers`) with the base wave n_1 = 1 first. `domain` picks the periodic
+surface (Hilbert/cot kernel, Westergaard for one harmonic) or a single non-periodic indenter
+(Cauchy kernel, Hertz at small a); both may be swept side by side.
+
+Normalised mode (default): x in units of a, pressures divided by p* = pi E* Delta_1/lambda_1,
+u_z by Delta_1; only Delta_i/Delta_1 matters. Physical mode (the recipe gives E, nu and lambda_1;
+amplitudes in metres): pascals and metres, x in metres from the contact centre. The contact
+size stays the ratio 2a/lambda_1 in both modes (the paper's abscissa).
+
+Methods: "auto" and "series" are the same exact series (length chosen from method.rtol, recorded in
+n_terms / error_estimate / converged). "approximate_eq18" / "approximate_eq20" replace `pressure`
+(only) by the paper's approximate formulas, which are inaccurate: they exist so their error can be
+charted, are never the default, and are flagged validity = 2 at every point.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..physics import wavy as wv
+from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
+
+REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy surface with an elastic "
+             "half-plane, Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467; equations as "
+             "corrected in the stressfields formula sheet seed002 (combining factor E* = E/(1-nu^2))")
+
+PSTAR = "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)"
+DOMAINS = ("periodic", "nonperiodic")
+APPROXIMATE = {"approximate_eq18": wv.approximate_pressure_eq18, "approximate_eq20": wv.approximate_pressure_eq20}
+#: what a per-contact (x-independent) quantity depends on; only the swept ones become dimensions
+CASE = ("domain", "amplitudes", "wavenumbers", "n_harmonics", "E", "nu", "lambda_1", "a")
+
+PARAMETERS = (
+    Parameter("domain", "periodic wavy surface (period lambda_1) or a single non-periodic wavy indenter",
+              kind=STR, default="periodic", choices=DOMAINS),
+    Parameter("amplitudes", "amplitudes Delta_i of the harmonics, gap g = sum Delta_i (1 - cos(2 pi n_i x/"
+              "lambda_1)); row 1 is the base wave, Delta_1 > 0 (normalised mode: any length unit, only "
+              "Delta_i/Delta_1 matters)", units="1", units_physical="m", kind=ARRAY, required=True,
+              sweepable=False),
+    Parameter("wavenumbers", "integer wavenumbers n_i >= 1 of the harmonics (wavelength lambda_1/n_i), "
+              "paired with amplitudes; the first is 1", kind=ARRAY, required=True, sweepable=False),
+    Parameter("n_harmonics", "number of harmonics used: the first N rows of the table (default: all)",
+              kind=INT, low=1),
+    Parameter("E", "Young's modulus of the half-plane (giving it switches to physical units)", units="Pa",
+              low=0.0, low_open=True, high=1e15, sweepable=False, mode="physical"),
+    Parameter("nu", "Poisson's ratio of the half-plane", low=0.0, high=0.5, sweepable=False, mode="physical"),
+    Parameter("lambda_1", "wavelength lambda_1 of the base wave", units="m", low=0.0, low_open=True,
+              high=1e6, sweepable=False, mode="physical"),
+    Parameter("a", "contact width 2a divided by the base wavelength lambda_1", required=True,
+              low=0.0, high=1.0, low_open=True, high_open=True),
+    Parameter("x", "surface coordinate x divided by the contact half-width a (physical mode: x in metres "
+              "from the contact centre)", units="1", units_physical="m", default=0.0, low=-1e6, high=1e6),
+)
+
+_SERIES = ("the truncated series of eqs. (10)-(12) (periodic) or (14) (non-periodic) for this 2a/lambda_1 "
+           "and harmonic count")
+VARIABLES = (
+    Variable("pressure", "contact pressure p(x) (compressive positive; 0 outside the contact)",
+             units_physical="Pa", scale=PSTAR,
+             comment="Exact series, length chosen from method.rtol (see n_terms, error_estimate). With "
+                     "method approximate_eq18/eq20 it is instead the paper's approximate formula, which is "
+                     "NOT accurate (validity = 2); all other variables stay exact."),
+    Variable("uz", "surface displacement u_z(x), positive into the body", units_physical="m",
+             scale="the amplitude Delta_1 of the base wave",
+             comment="Datum (C = 0 in eq. 5): periodic domain, kernel ln|2 sin(pi (x - xi)/lambda_1)|, so u_z "
+                     "has zero mean over one period; non-periodic domain, kernel ln|2 pi (x - xi)/lambda_1| "
+                     "(lengths in units of lambda_1/(2 pi)). Inside the contact u_z(x) = u_z(0) - g(x)."),
+    Variable("mean_pressure", "mean (nominal) pressure p_inf = (1/lambda_1) * integral of p over the contact "
+             "(non-periodic: load per unit length / lambda_1)", units_physical="Pa", scale=PSTAR, dims=CASE,
+             comment="Closed forms: eq. (16) (non-periodic), Legendre form of the formula sheet (periodic)."),
+    Variable("peak_pressure", "pressure p(0) at the contact centre (the paper's p_max)", units_physical="Pa",
+             scale=PSTAR, dims=CASE),
+    Variable("max_pressure", "global maximum of the contact pressure over the contact", units_physical="Pa",
+             scale=PSTAR, dims=CASE),
+    Variable("max_pressure_x", "position x >= 0 of the global pressure maximum (p is even)", units_physical="m",
+             scale="the contact half-width a", dims=CASE),
+    Variable("continuous_contact", "exact test of the continuous-contact assumption", dtype="int8", dims=CASE,
+             flag_values=(0, 1), flag_meanings=("fails", "holds"),
+             comment="1 where p/sqrt(1-(x/a)^2) >= 0 over the contact and the gap outside it is >= 0 (formula "
+                     "sheet section 6). 0: the continuous-contact solution has tensile pressure or the profile "
+                     "penetrates the surface outside the contact; the real contact is then discrete and the "
+                     "values here are those of the model only."),
+    Variable("johnson_parameter", "Johnson parameter chi = max over ripples i >= 2 of pi E* Delta_i/(lambda_i "
+             "p_h), p_h = 2 p_inf lambda_1/(pi a) (as corrected in the formula sheet; 0 for one harmonic)",
+             dims=CASE, comment="The paper's criterion chi < 1 is a heuristic, neither necessary nor sufficient: "
+                                "see continuous_contact."),
+    Variable("n_terms", f"number of sine terms summed in {_SERIES}", dtype="int32", dims=CASE),
+    Variable("error_estimate", "bound on the series error of pressure, peak_pressure and max_pressure "
+             "(truncated tail + rounding)", units_physical="Pa", scale=PSTAR, dims=CASE,
+             comment="Outside the contact uz is good to about error_estimate/p* * (|x| - a) * 2 pi/lambda_1 "
+                     "* Delta_1."),
+    Variable("converged", f"whether {_SERIES} met method.rtol", dtype="int8", dims=CASE, flag_values=(0, 1),
+             flag_meanings=("not_converged", "converged"), always=True,
+             comment="0: rtol was not reached (below rounding, or the length cap as 2a/lambda_1 -> 1); the "
+                     "values are the best available, good to error_estimate."),
+    Variable("validity", "validity of pressure and uz at the point", dtype="int8", flag_values=(0, 1, 2),
+             flag_meanings=("series_converged", "series_not_converged", "approximate_formula"), always=True,
+             comment="1: the series did not meet method.rtol (see converged, error_estimate); 2: method "
+                     "approximate_eq18/eq20, pressure is the paper's inaccurate approximation."),
+)
+
+
+def evaluate(names, p, options):
+    """Each domain value is a separate physics call (periodic is a flag there), merged along its axis."""
+    domain = np.asarray(p.get("domain", "periodic"), dtype=object)
+    out: dict[str, np.ndarray] = {}
+    for value in dict.fromkeys(domain.ravel()):
+        part = _evaluate(names, p, options, periodic=value == "periodic")
+        for k, v in part.items():
+            out[k] = v if k not in out else np.where(domain == value, v, out[k])
+    return out
+
+
+def _evaluate(names, p, options, periodic):
+    amps, wns = np.asarray(p["amplitudes"], dtype=float), np.asarray(p["wavenumbers"], dtype=float)
+    a = np.asarray(p["a"], dtype=float)
+    exact = dict(periodic=periodic, n_harmonics=p.get("n_harmonics"))
+    series = dict(exact, rtol=options["rtol"])
+    if options["physical"]:
+        pstar = math.pi * p["E"] / (1.0 - p["nu"] ** 2) * amps[0] / p["lambda_1"]
+        length, half_width = amps[0], a * p["lambda_1"] / 2.0
+    else:
+        pstar, length, half_width = 1.0, 1.0, 1.0
+    table = (a, amps, wns)
+    out: dict[str, np.ndarray] = {}
+
+    if any(n in names for n in ("pressure", "uz", "validity")):
+        x = np.asarray(p["x"], dtype=float) / half_width
+        approx = APPROXIMATE.get(options["method"])
+        if "pressure" in names:
+            if approx:   # nonperiodic only: the recipe check refuses the periodic domain
+                out["pressure"] = approx(x, *table, n_harmonics=exact["n_harmonics"]) * pstar
+            else:
+                out["pressure"] = wv.pressure(x, *table, **series)[0] * pstar
+        if "uz" in names:
+            out["uz"] = wv.displacement(x, *table, **series)[0] * length
+        if "validity" in names:
+            ok = wv.peak_pressure(*table, **series)[1]["converged"]
+            out["validity"] = np.int8(2) if approx else np.where(ok, 0, 1).astype(np.int8)
+
+    if "mean_pressure" in names:
+        out["mean_pressure"] = wv.mean_pressure(*table, **exact) * pstar
+    if any(n in names for n in ("peak_pressure", "n_terms", "error_estimate", "converged")):
+        p0, info = wv.peak_pressure(*table, **series)
+        out.update(peak_pressure=p0 * pstar, n_terms=info["n_terms"], error_estimate=info["error_estimate"] * pstar,
+                   converged=info["converged"].astype(np.int8))
+    if "max_pressure" in names or "max_pressure_x" in names:
+        pmax, xmax, _ = wv.max_pressure(*table, **series)
+        out.update(max_pressure=pmax * pstar, max_pressure_x=xmax * half_width)
+    if "continuous_contact" in names:
+        out["continuous_contact"] = wv.continuous_contact(*table, **series).astype(np.int8)
+    if "johnson_parameter" in names:
+        out["johnson_parameter"] = wv.johnson_parameter(*table, **exact)
+    return {n: out[n] for n in names}
+
+
+def check(values, physical, method):
+    """Cross-parameter checks: the harmonic table, n_harmonics against it, approximations' domain."""
+    amps, wns = values.get("amplitudes"), values.get("wavenumbers")
+    if amps is None or wns is None:
+        return []
+    if len(amps) != len(wns):
+        return [f"amplitudes has {len(amps)} values but wavenumbers has {len(wns)}; they must pair up "
+                "(one row per harmonic)"]
+    problems = []
+    bad = [n for n in wns if not float(n).is_integer() or n < 1]
+    if bad:
+        problems.append(f"wavenumbers = {_show(wns)}: {_show(bad[0])} is not allowed; each must be an integer "
+                        ">= 1 (wavelength lambda_1/n_i)")
+    elif wns[0] != 1:
+        problems.append(f"wavenumbers = {_show(wns)} must start with 1: the first row is the base wave, "
+                        "which fixes lambda_1")
+    if not amps[0] > 0:
+        problems.append(f"amplitudes = {_show(amps)}: the base-wave amplitude Delta_1 = {_show(amps[0])} "
+                        "must be > 0")
+    N = values.get("n_harmonics")
+    if N is not None and not np.all(np.mod(N, 1) == 0):
+        problems.append(f"n_harmonics = {_show(N)} must be an integer in [1, {len(wns)}] (the rows of "
+                        "amplitudes/wavenumbers)")
+    elif N is not None and np.max(N) > len(wns):
+        problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
+                        f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
+    domain = values.get("domain")
+    if method in APPROXIMATE and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
+        problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "
+                        f"it needs domain = 'nonperiodic', got domain = {_show(domain)}")
+    return problems
+
+
+def _show(v):
+    if isinstance(v, (tuple, list, np.ndarray)):
+        return "[" + ", ".join(_show(x) for x in v) + "]"
+    if isinstance(v, (float, np.floating)) and float(v).is_integer():
+        return str(int(v))
+    return repr(v.item() if isinstance(v, np.generic) else v)
+
+
+WAVY = Scenario(
+    name="wavy",
+    summary="Rigid multisinusoidal wavy surface (periodic or single indenter) on an elastic half-plane in "
+            "continuous contact: pressure, displacement, mean and peak pressure, validity of the contact model",
+    references=REFERENCE, parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
+    physical_switch="E", methods=("auto", "series", *APPROXIMATE), check=check,
+)
+SCENARIOS: tuple = (WAVY,)
