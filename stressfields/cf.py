@@ -26,8 +26,8 @@ def global_attrs(recipe) -> dict[str, str]:
         "history": f"{stamp} stressfields {__version__} generate (scenario {scen.name}, "
                    f"recipe sha256 {recipe.sha256[:16]}) on Python {platform.python_version()}",
         "references": scen.references,
-        "comment": f"{scen.summary}. Values in {mode}. Signs: tension positive, z points into the "
-                   "body, p_h = -trace(sigma)/3. See data_schema.md of stressfields for every variable.",
+        "comment": f"{scen.summary}. Values in {mode}. Signs: {scen.conventions}. See data_schema.md "
+                   "of stressfields for every variable.",
         "stressfields_version": __version__,
         "stressfields_scenario": scen.name,
         "stressfields_units_mode": "physical" if recipe.physical else "normalised",

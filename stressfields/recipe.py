@@ -120,7 +120,8 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
                 problems.append(f"unknown key '{tname}.{key}'; allowed: {', '.join(allowed)}")
 
     declared = {p.name: p for p in scen.parameters}
-    physical = scen.physical_switch is not None and scen.physical_switch in params
+    # a scenario without a switch works in physical units only
+    physical = scen.physical_switch is None or scen.physical_switch in params
     mode = "physical" if physical else "normalised"
     values: dict[str, Any] = {}
     rejected: set[str] = set()
@@ -147,9 +148,8 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     for key in list(values):
         par = declared[key]
         if not _applies(par, values, declared, mode) and par.when:
-            cond = " or ".join(f"{k} = {v!r}" for k, vs in par.when.items() for v in vs)
             if key in params:
-                problems.append(f"parameter '{key}' is only used when {cond}")
+                problems.append(f"parameter '{key}' is only used when {par.condition()}")
             del values[key]
     for par in scen.parameters:
         if par.name not in values and par.name not in rejected and _applies(par, values, declared, mode) and (

@@ -1,6 +1,8 @@
 """data_schema.md and `stressfields describe`, both derived from the scenario declarations."""
 from __future__ import annotations
 
+import numpy as np
+
 from .scenarios import REGISTRY
 from .scenarios.base import Parameter, Scenario, Variable
 
@@ -19,8 +21,7 @@ a parameter given as a single value becomes a scalar coordinate; a parameter of 
 `stressfields_recipe` (the recipe text), `stressfields_recipe_canonical` and
 `stressfields_recipe_sha256` (SHA-256 of the canonical JSON of the normalised recipe).
 
-Signs: tension positive; z points into the body; p_h = -trace(sigma)/3; the tangential traction
-acts on the half-space along +x.
+Sign conventions are stated per scenario below and in each file's `comment` attribute.
 """
 
 
@@ -34,6 +35,7 @@ def document() -> str:
 def scenario_text(scen: Scenario, level: int = 1) -> str:
     h = "#" * level
     lines = [f"{h} `{scen.name}`", "", scen.summary + ".", "", f"Reference: {scen.references}.", ""]
+    lines += [f"Signs: {scen.conventions}.", ""]
     if scen.physical_switch:
         lines += [f"Units: normalised by default; giving `{scen.physical_switch}` switches to physical "
                   "units (column 'physical').", ""]
@@ -57,12 +59,14 @@ def scenario_text(scen: Scenario, level: int = 1) -> str:
 
 
 def _parameter_row(p: Parameter) -> str:
-    default = "required" if p.required else ("-" if p.default is None else repr(p.default))
+    if isinstance(p.default, np.ndarray):
+        default = "sweep over " + ", ".join(repr(v) for v in p.default.tolist())
+    else:
+        default = "required" if p.required else ("-" if p.default is None else repr(p.default))
     if p.mode == "physical":
         default = "required in physical mode" if not p.when else "required in physical mode, when applicable"
     if p.when:
-        cond = " or ".join(f"{k} = {v!r}" for k, vs in p.when.items() for v in vs)
-        default += f" (only when {cond})"
+        default += f" (only when {p.condition()})"
     units = "-" if p.mode == "physical" else ("-" if p.choices else p.units)
     phys = "-" if p.choices else p.units_in(True)
     return (f"| `{p.name}` | {p.meaning} | {units} | {phys} | {p.allowed()} | {default} | "

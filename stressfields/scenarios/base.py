@@ -44,6 +44,10 @@ class Parameter:
     def units_in(self, physical: bool) -> str:
         return self.units_physical if (physical and self.units_physical) else self.units
 
+    def condition(self) -> str:
+        """The `when` condition in words: keys joined by 'and', values of one key by 'or'."""
+        return " and ".join(" or ".join(f"{k} = {v!r}" for v in vs) for k, vs in self.when.items())
+
     def allowed(self) -> str:
         """Plain-language description of the allowed values, used in errors and in the schema."""
         if self.choices:
@@ -126,6 +130,9 @@ class Scenario:
     evaluate: Callable[..., dict[str, np.ndarray]]
     #: parameters whose presence switches the scenario to physical units
     physical_switch: str | None = None
+    #: sign conventions of the data, said in each file's `comment`
+    conventions: str = ("tension positive, z points into the body, p_h = -trace(sigma)/3, tangential "
+                        "traction on the half-space along +x")
     methods: tuple[str, ...] = ("auto",)
     default_variables: tuple[str, ...] | None = None
     #: extra checks across parameters: check(values, physical, method) -> list of messages

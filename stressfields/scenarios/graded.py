@@ -1,2 +1,550 @@
-"""Power-law graded half-space scenarios (filled in by the graded family)."""
-SCENARIOS: tuple = ()
+"""Power-law graded elastic half-space, E(z) = E0 (z/c0)^k: MDR normal, adhesive and tangential contact.
+
+Scenarios `graded_normal`, `graded_adhesive` (rigid axisymmetric indenter on one graded half-space)
+and `graded_tangential` (Cattaneo-Mindlin partial slip of two graded bodies). Physical units only
+(SI): lengths in m, E0 and pressures in Pa, forces in N; the radial coordinate `r` is given as r/a.
+
+Method "auto" and "closed" use the closed forms of the paper (power-law profiles f = A r^n, with
+the paraboloid n = 2, A = 1/(2R) and the cone n = 1, A = tan(theta)); "quadrature" evaluates the
+MDR integral rules for the profile object (mandatory for a tabulated profile), with the recipe's
+rtol. Defaults: nu = 0.3, k = 0.5, c0 = 1 m (E0 is then the modulus at 1 m depth; only the
+combination E0/c0^k enters), r/a = 0.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from ..physics import graded as gp
+from ..physics.graded import adhesive as gad, normal as gno, tangential as gtg
+from .base import ARRAY, STR, Parameter, Scenario, Variable, nonfinite_flag
+
+REFERENCE = ("M. Hess, V. L. Popov, Method of dimensionality reduction in contact mechanics and friction: "
+             "a user's handbook. II. Power-law graded materials, Facta Universitatis, Series Mechanical "
+             "Engineering 14(3), 2016, 251-268, doi:10.22190/FUME1603251H")
+BIG = 1e30
+
+# -- parameters ---------------------------------------------------------------------------------
+PROFILE = Parameter("profile", "indenter profile (parabolic: r^2/(2R); conical: r tan(theta); power_law: "
+                    "A r^n; tabulated: spline through profile_r, profile_f)", kind=STR, default="parabolic",
+                    choices=("parabolic", "conical", "power_law", "tabulated"), sweepable=False)
+R = Parameter("R", "radius of curvature of the paraboloid f = r^2/(2R)", units="m", low=0.0, low_open=True,
+              high=1e6, required=True, when={"profile": ("parabolic",)})
+TAN = Parameter("tan_theta", "slope tan(theta) of the cone f = r tan(theta)", low=0.0, low_open=True, high=1e6,
+                required=True, when={"profile": ("conical",)})
+N = Parameter("n", "exponent of the power-law profile f = A r^n", low=0.0, low_open=True, high=50.0,
+              required=True, when={"profile": ("power_law",)})
+# units depend on n (m^(1-n)), which UDUNITS cannot express: the number is declared "1" and its SI
+# meaning is said in the text, as in the axisymmetric scenario
+A = Parameter("A", "amplitude of the power-law profile f = A r^n, with r and f in metres (SI units m^(1-n))",
+              low=0.0, low_open=True, high=BIG, required=True, when={"profile": ("power_law",)})
+PROFILE_R = Parameter("profile_r", "radii of the tabulated profile f(r), from 0, strictly increasing", units="m",
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
+PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, strictly increasing", units="m",
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
+E0 = Parameter("E0", "Young's modulus E0 at the characteristic depth c0, E(z) = E0 (z/c0)^k", units="Pa",
+               low=0.0, low_open=True, high=1e15, required=True)
+C0 = Parameter("c0", "characteristic depth c0 at which E = E0", units="m", default=1.0, low=0.0, low_open=True,
+               high=1e6)
+NU = Parameter("nu", "Poisson's ratio (constant with depth)", default=0.3, low=-1.0, low_open=True, high=0.5)
+K = Parameter("k", "grading exponent k of E(z) = E0 (z/c0)^k", default=0.5, low=0.0, high=1.0, high_open=True)
+A_RAD = Parameter("a", "contact radius a", units="m", low=0.0, low_open=True, high=1e6, required=True)
+R_REL = Parameter("r", "radial coordinate r divided by the contact radius a", default=0.0, low=0.0, high=1e6)
+GEOMETRY = (PROFILE, R, TAN, N, A, PROFILE_R, PROFILE_F)
+MATERIAL = (E0, C0, NU, K)
+GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dimensions
+
+METHODS = ("auto", "closed", "quadrature")
+VALIDITY = dict(dtype="int8", flag_values=(0, 1, 2), flag_meanings=("finite", "unbounded_at_singular_point",
+                                                                    "undefined_at_singular_point"), always=True)
+
+
+def _f(p, key):
+    return np.asarray(p[key], dtype=float)
+
+
+def _power(p):
+    """(n, A_n) of the closed forms for the parabolic, conical and power-law profiles (eqs. 7, 16, 25)."""
+    kind = p["profile"]
+    if kind == "parabolic":
+        return gp.parabolic(_f(p, "R"))
+    if kind == "conical":
+        return gp.conical(_f(p, "tan_theta"))
+    return _f(p, "n"), _f(p, "A")
+
+
+def _make_profile(kind, p, *geo):
+    if kind == "tabulated":
+        return gp.Tabulated(np.asarray(p["profile_r"]), np.asarray(p["profile_f"]))
+    if kind == "parabolic":
+        return gp.PowerLaw.parabolic(*geo)
+    if kind == "conical":
+        return gp.PowerLaw.conical(*geo)
+    return gp.PowerLaw(*geo)
+
+
+def _per_profile(p, fn):
+    """fn(profile, q) for each profile object of the block (quadrature route); fn returns an array or a
+    tuple of arrays.
+
+    The quadrature kernels take one profile object, so a swept geometry (R, n, ...) is looped over;
+    each call sees the parameters sliced to its geometry value, so no point is computed twice.
+    """
+    keys = {"parabolic": ("R",), "conical": ("tan_theta",), "power_law": ("n", "A"), "tabulated": ()}[p["profile"]]
+    geo = [np.asarray(p[key], dtype=float) for key in keys]
+    if all(g.ndim == 0 for g in geo):
+        return fn(_make_profile(p["profile"], p, *map(float, geo)), p)
+    gshape = np.broadcast_shapes(*(g.shape for g in geo))
+    geo = [np.broadcast_to(g, gshape) for g in geo]
+    results = []
+    for idx in np.ndindex(gshape):
+        sl = tuple(slice(i, i + 1) if s > 1 else slice(None) for i, s in zip(idx, gshape))
+        q = {key: (v[tuple(s if m > 1 else slice(None) for s, m in zip(sl, v.shape))]
+                   if isinstance(v, np.ndarray) and v.ndim == len(gshape) else v) for key, v in p.items()}
+        res = fn(_make_profile(p["profile"], p, *(float(g[idx]) for g in geo)), q)
+        many = isinstance(res, tuple)
+        results.append((sl, tuple(map(np.asarray, res)) if many else (np.asarray(res),)))
+    outs = []
+    for j in range(len(results[0][1])):
+        shape = np.broadcast_shapes(gshape, *(r[j].shape for _, r in results))
+        out = np.empty(shape, dtype=np.result_type(*(r[j] for _, r in results)))
+        for sl, res in results:
+            out[sl] = res[j]
+        outs.append(out)
+    return tuple(outs) if many else outs[0]
+
+
+def _tip_singular(prof, k):
+    """Is the pressure unbounded at r = 0? For f = A r^n when n + k <= 1 (Phi(0) of the sheet, sec. 4); for a
+    spline tip (finite slope f'(0)) when k = 0 and f'(0) != 0, as for the cone."""
+    if isinstance(prof, gp.PowerLaw):
+        return prof.n + k <= 1.0
+    # a spline through a smooth tip keeps a rounding-level slope at 0: that is no cone
+    slope = abs(float(prof.df(0.0))) * prof.r_max / float(prof.f(prof.r_max))
+    return (k == 0.0) & (slope > 1e-8)
+
+
+def _centre(r, a, prof, k, compute, fill):
+    """compute(r) with the points r = 0 of an unbounded centre pressure set to ``fill``.
+
+    The quadrature kernels do not converge there (the integral diverges); the closed forms return +inf.
+    """
+    sing = (r == 0.0) & _tip_singular(prof, k)
+    if not np.any(sing):
+        return compute(r)
+    return np.where(sing, fill, compute(np.where(sing, 0.5 * a, r)))
+
+
+def _check_profile(values, method):
+    """Cross-parameter rules shared by the three scenarios; messages name key, value and range."""
+    problems = []
+    kind = values.get("profile")
+    if kind == "tabulated":
+        r, f = (np.asarray(values.get(key, ()), dtype=float) for key in ("profile_r", "profile_f"))
+        if r.shape != f.shape:
+            return [f"profile_r has {r.size} values but profile_f has {f.size}; they must pair up"]
+        if r.size < 4 or r[0] != 0.0 or np.any(np.diff(r) <= 0) or np.any(np.diff(f) <= 0):
+            return [f"profile_r = {r.tolist()!r} / profile_f: need at least 4 points, profile_r from 0 and strictly "
+                    "increasing, profile_f strictly increasing"]
+        a_max = float(np.max(values["a"]))
+        if a_max > r[-1]:
+            problems.append(f"a = {a_max!r} m exceeds the tabulated range: it must be in (0, {float(r[-1])!r}] "
+                            "(the last profile_r); extend the table")
+        if method == "closed":
+            problems.append("method.method = 'closed' has no closed form for profile = 'tabulated'; "
+                            "use 'auto' or 'quadrature'")
+    if kind == "power_law" and method == "quadrature" and np.min(values["n"]) < 1.0:
+        # the transform quadrature (eq. 5) does not converge for a tip with unbounded slope f' ~ r^(n-1)
+        problems.append(f"n = {float(np.min(values['n']))!r} with method.method = 'quadrature': the quadrature "
+                        "route needs n in [1, 50] (a tip of finite slope); use method 'auto' for n < 1")
+    return problems
+
+
+def _grid(values, names):
+    """The named values as mutually broadcasting arrays (one axis per swept parameter)."""
+    swept = [n for n in names if isinstance(values.get(n), np.ndarray)]
+    out = {}
+    for n in names:
+        v = values.get(n)
+        if isinstance(v, np.ndarray):
+            shape = [1] * len(swept)
+            shape[swept.index(n)] = v.size
+            v = v.reshape(shape)
+        out[n] = v
+    return out
+
+
+def _validity(field_dims, comment):
+    return Variable("validity", "validity of the field values", dims=field_dims, comment=comment, **VALIDITY)
+
+
+# -- graded_normal -------------------------------------------------------------------------------
+N_DIMS = ("E0", "c0", "k", "nu", "a") + GEOM
+N_VARS = (
+    Variable("kappa", "profile scaling factor g(a)/f(a) of the MDR transform (eq. 9: kappa(n, k) = "
+             "(n/2) B(n/2, (1+k)/2) for a power law f = A r^n)", dims=("k", "a") + GEOM),
+    Variable("depth", "indentation depth d(a)", units="m", dims=("k", "a") + GEOM),
+    Variable("normal_force", "normal force F_N(a)", units="N", dims=N_DIMS),
+    Variable("pressure", "contact pressure p(r; a) (compressive positive)", units="Pa", dims=N_DIMS + ("r",)),
+    Variable("uz", "normal surface displacement u_z(r; a), positive into the body", units="m",
+             dims=("k", "a") + GEOM + ("r",)),
+    _validity(N_DIMS + ("r",), "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the cone at k = 0), "
+              "where the exact pressure is unbounded"),
+)
+
+
+def _quadrature(options, p):
+    return options["method"] == "quadrature" or p["profile"] == "tabulated"
+
+
+def _evaluate_normal(names, p, options):
+    rtol = options["rtol"]
+    a = _f(p, "a")
+    out = {}
+    mat = lambda q: dict(k=_f(q, "k"), nu=_f(q, "nu"), E0=_f(q, "E0"), c0=_f(q, "c0"))  # noqa: E731
+    r = lambda q: _f(q, "r") * _f(q, "a")                                                # noqa: E731
+    if _quadrature(options, p):
+        quad = {
+            "kappa": lambda prof, q: gno.depth_quad(_f(q, "a"), prof, k=_f(q, "k"), rtol=rtol) / prof.f(_f(q, "a")),
+            "depth": lambda prof, q: gno.depth_quad(_f(q, "a"), prof, k=_f(q, "k"), rtol=rtol),
+            "normal_force": lambda prof, q: gno.normal_force_quad(_f(q, "a"), prof, **mat(q), rtol=rtol),
+            "pressure": lambda prof, q: _centre(r(q), _f(q, "a"), prof, _f(q, "k"), lambda rr: gno.pressure_quad(
+                rr, _f(q, "a"), prof, **mat(q), rtol=rtol), np.inf),
+            "uz": lambda prof, q: gno.surface_displacement_quad(r(q), _f(q, "a"), prof, k=_f(q, "k"), rtol=rtol),
+        }
+        out = {n: _per_profile(p, quad[n]) for n in names if n in quad}
+    else:
+        n, A_n = _power(p)
+        k = _f(p, "k")
+        closed = {
+            "kappa": lambda: gp.kappa(n, k) + 0.0 * a,
+            "depth": lambda: gno.depth(a, k=k, n=n, A_n=A_n),
+            "normal_force": lambda: gno.normal_force(a, **mat(p), n=n, A_n=A_n),
+            "pressure": lambda: gno.pressure(r(p), a, **mat(p), n=n, A_n=A_n),
+            "uz": lambda: gno.surface_displacement(r(p), a, k=k, n=n, A_n=A_n),
+        }
+        out = {n: closed[n]() for n in names if n in closed}
+    if "validity" in names:
+        out["validity"] = nonfinite_flag(*(out[n] for n in ("pressure", "uz") if n in out))
+    return out
+
+
+def _check_normal(values, physical, method):
+    return _check_profile(values, method)
+
+
+CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
+               "into the body; adhesive (tensile) forces negative; shear traction along the tangential force")
+
+GRADED_NORMAL = Scenario(
+    name="graded_normal",
+    summary="Rigid axisymmetric indenter on a power-law graded half-space E = E0 (z/c0)^k: depth, force, "
+            "pressure and surface displacement (MDR)",
+    references=REFERENCE, parameters=GEOMETRY + MATERIAL + (A_RAD, R_REL), variables=N_VARS,
+    evaluate=_evaluate_normal, methods=METHODS, check=_check_normal, conventions=CONVENTIONS,
+    default_variables=("depth", "normal_force", "pressure", "uz"),
+)
+
+# -- graded_adhesive -----------------------------------------------------------------------------
+DGAM = Parameter("delta_gamma", "work of adhesion Delta gamma", units="J m-2", low=0.0, high=1e6, required=True)
+CONTROL = Parameter("control", "loading condition at the critical (pull-off) point", kind=STR,
+                    choices=("fixed_load", "fixed_grips"),
+                    default=np.array(["fixed_load", "fixed_grips"], dtype=object))
+AD_DIMS = ("E0", "c0", "k", "nu", "delta_gamma", "a") + GEOM
+CRIT_DIMS = ("E0", "c0", "k", "nu", "delta_gamma") + GEOM + ("control",)
+AD_VARS = (
+    Variable("depth", "indentation depth d(a) with adhesion (negative: below the undeformed surface)",
+             units="m", dims=AD_DIMS),
+    Variable("normal_force", "normal force F_N(a) with adhesion (negative: tensile)", units="N", dims=AD_DIMS),
+    Variable("pressure", "contact pressure p(r; a) with adhesion (compressive positive; -inf at r = a)",
+             units="Pa", dims=AD_DIMS + ("r",)),
+    Variable("critical_radius", "critical contact radius a_c at pull-off", units="m", dims=CRIT_DIMS),
+    Variable("critical_depth", "indentation depth d_c at pull-off", units="m", dims=CRIT_DIMS),
+    Variable("critical_force", "normal force F_c at pull-off (negative: tensile)", units="N", dims=CRIT_DIMS),
+    _validity(AD_DIMS + ("r",), "1: pressure = -inf at r = a (the adhesive edge singularity, eq. 37) or +inf at r = 0 "
+              "for a profile with n + k <= 1, where the exact pressure is unbounded"),
+    Variable("critical_validity", "validity of the critical (pull-off) values", dims=CRIT_DIMS, dtype="int8",
+             flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
+             comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
+                     "tabulated profile; the critical values are NaN there"),
+)
+
+
+def _critical_closed(p, mode):
+    n, A_n = _power(p)
+    k = _f(p, "k")
+    ok = 2.0 * n + k - 1.0 > 0.0            # Table 3: a_c exists only for n > (1-k)/2
+    state = gad.critical_state(k=k, nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"), n=np.where(ok, n, 2.0),
+                               A_n=A_n, delta_gamma=_f(p, "delta_gamma"), mode=mode)
+    return tuple(np.where(ok, s, np.nan) for s in state)
+
+
+def _critical_quad(p, mode, rtol):
+    def one(prof, q):
+        kw = dict(k=_f(q, "k"), nu=_f(q, "nu"), E0=_f(q, "E0"), c0=_f(q, "c0"), delta_gamma=_f(q, "delta_gamma"))
+        shape = np.broadcast_shapes(*(np.shape(v) for v in kw.values()))
+        nan = np.full(shape, np.nan)
+        if isinstance(prof, gp.Tabulated):
+            bracket, exists = (prof.r_max * 1e-9, prof.r_max), np.ones(shape, bool)
+        else:     # bracket around the closed-form root; the root itself comes from the MDR rules
+            a_c = _critical_closed({**q, "profile": "power_law", "n": prof.n, "A": prof.A_n}, mode)[0]
+            exists = np.broadcast_to(~np.isnan(a_c), shape)
+            if not exists.any():
+                return nan, nan, nan
+            bracket = (np.nanmin(a_c) / 4.0, np.nanmax(a_c) * 4.0)
+        try:
+            state = gad.critical_state_quad(prof, mode=mode, a_bracket=bracket, rtol=rtol, **kw)
+            return tuple(np.where(exists, s, np.nan) for s in state)
+        except ValueError:      # some point has no root in the bracket: solve point by point, NaN there
+            out = [nan.copy() for _ in range(3)]
+            for idx in zip(*np.nonzero(exists)) if shape else [()]:
+                try:
+                    one_point = gad.critical_state_quad(prof, mode=mode, a_bracket=bracket, rtol=rtol,
+                                                        **{key: np.broadcast_to(v, shape)[idx]
+                                                           for key, v in kw.items()})
+                except ValueError:
+                    continue
+                for o, v in zip(out, one_point):
+                    o[idx] = v
+            return tuple(out)
+    return _per_profile(p, one)
+
+
+def _evaluate_adhesive(names, p, options):
+    out = {}
+    rtol = options["rtol"]
+    quad = _quadrature(options, p)
+    mat = lambda q: dict(k=_f(q, "k"), nu=_f(q, "nu"), E0=_f(q, "E0"), c0=_f(q, "c0"),  # noqa: E731
+                         delta_gamma=_f(q, "delta_gamma"))
+    if {"depth", "normal_force", "pressure"} & set(names):
+        if quad:
+            fns = {"depth": lambda prof, q: gad.depth_quad(_f(q, "a"), prof, **mat(q), rtol=rtol),
+                   "normal_force": lambda prof, q: gad.normal_force_quad(_f(q, "a"), prof, **mat(q), rtol=rtol),
+                   "pressure": lambda prof, q: _centre(
+                       _f(q, "r") * _f(q, "a"), _f(q, "a"), prof, _f(q, "k"),
+                       lambda rr: gad.pressure_quad(rr, _f(q, "a"), prof, **mat(q), rtol=rtol), np.inf)}
+            out.update({n: _per_profile(p, fns[n]) for n in names if n in fns})
+        else:
+            n, A_n = _power(p)
+            a = _f(p, "a")
+            fns = {"depth": lambda: gad.depth(a, **mat(p), n=n, A_n=A_n),
+                   "normal_force": lambda: gad.normal_force(a, **mat(p), n=n, A_n=A_n),
+                   "pressure": lambda: gad.pressure(_f(p, "r") * a, a, **mat(p), n=n, A_n=A_n)}
+            out.update({n: fns[n]() for n in names if n in fns})
+    crit = ("critical_radius", "critical_depth", "critical_force")
+    if set(crit) & set(names):
+        control = np.asarray(p["control"])
+        results = None
+        for mode in ("fixed_load", "fixed_grips"):
+            if not np.any(control == mode):
+                continue
+            state = _critical_quad(p, mode, rtol) if quad else _critical_closed(p, mode)
+            results = state if results is None else tuple(np.where(control == mode, s, r)
+                                                          for s, r in zip(state, results))
+        out.update({n: v for n, v in zip(crit, results) if n in names})
+        if "critical_validity" in names:
+            out["critical_validity"] = np.where(np.isnan(results[0]), np.int8(1), np.int8(0))
+    if "validity" in names:
+        out["validity"] = nonfinite_flag(out["pressure"]) if "pressure" in out else np.int8(0)
+    return out
+
+
+GRADED_ADHESIVE = Scenario(
+    name="graded_adhesive",
+    summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
+            "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
+    references=REFERENCE, parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL), variables=AD_VARS,
+    evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS,
+    default_variables=("depth", "normal_force", "pressure", "critical_radius", "critical_depth", "critical_force"),
+)
+
+# -- graded_tangential ---------------------------------------------------------------------------
+BODY2 = Parameter("body2", "counter-body: identical (the same graded material, eqs. 46-47), rigid, or elastic "
+                  "(graded with the same k and c0, modulus E0_2 and Poisson's ratio nu_2)", kind=STR,
+                  default="identical", choices=("identical", "rigid", "elastic"), sweepable=False)
+E0_2 = Parameter("E0_2", "modulus E0 of the elastic counter-body at depth c0", units="Pa", low=0.0, low_open=True,
+                 high=1e15, required=True, when={"body2": ("elastic",)})
+NU_2 = Parameter("nu_2", "Poisson's ratio of the elastic counter-body (with poisson = 'holl_ratio': 1/(2+k) too)",
+                 low=-1.0, low_open=True, high=0.5, required=True,
+                 when={"body2": ("elastic",), "poisson": ("given",)})
+POISSON = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu) or 'holl_ratio' (nu = 1/(2+k) for "
+                    "every graded body, so that nu follows a sweep of k; Fig. 10)", kind=STR, default="given",
+                    choices=("given", "holl_ratio"), sweepable=False)
+NU_T = Parameter(NU.name, NU.meaning, default=NU.default, low=NU.low, low_open=True, high=NU.high,
+                 when={"poisson": ("given",)})
+UNCOUPLED = Parameter("uncoupled_approximation", "where the normal and tangential problems do not decouple (sec. "
+                      "5): 'reject' the recipe, or 'flag' the points (variable coupling) and compute the uncoupled "
+                      "approximation", kind=STR, default="reject", choices=("reject", "flag"), sweepable=False)
+MU = Parameter("mu", "coefficient of friction", default=0.3, low=0.0, low_open=True, high=10.0)
+FX = Parameter("fx", "tangential force F_x divided by mu F_N (force control; 1: onset of gross slip)",
+               default=0.0, low=0.0, high=1.0)
+DELTA_X = Parameter("delta_x", "imposed tangential displacement delta_x (displacement control; the force "
+                    "saturates at mu F_N once delta_x >= max_tangential_displacement)", units="m", default=0.0,
+                    low=0.0, high=1e3)
+PAIR = ("E0", "k", "nu", "E0_2", "nu_2")
+T_FIELD = PAIR + ("c0", "mu", "a") + GEOM + ("fx", "r")
+T_VARS = (
+    Variable("stick_radius", "radius c of the stick zone divided by the contact radius a (eq. 51)",
+             dims=("k", "a") + GEOM + ("fx",)),
+    Variable("tangential_displacement", "relative tangential displacement delta_x of the bodies (eq. 49)",
+             units="m", dims=PAIR + ("mu", "a") + GEOM + ("fx",)),
+    Variable("max_tangential_displacement", "tangential displacement delta_x,max at the onset of gross slip "
+             "(eq. 50)", units="m", dims=PAIR + ("mu", "a") + GEOM),
+    Variable("force_ratio", "tangential force F_x divided by mu F_N under the imposed displacement delta_x "
+             "(eq. 51; 1 in gross slip)", dims=PAIR + ("mu", "a") + GEOM + ("delta_x",)),
+    Variable("normal_force", "normal force F_N pressing the bodies together at contact radius a", units="N",
+             dims=PAIR + ("c0", "a") + GEOM),
+    Variable("shear_traction", "tangential traction tau_x(r) = mu [p(r; a) - p(r; c)] on the lower body "
+             "(eq. 45)", units="Pa", dims=T_FIELD),
+    # always: joins every variable that depends on the body pair
+    Variable("coupling", "normal-tangential coupling of the body pair", dims=PAIR, dtype="int8", flag_values=(0, 1),
+             flag_meanings=("decoupled_exact", "uncoupled_approximation"), always=True,
+             comment="0: identical bodies, or nu = 1/(2+k) for every elastic body (sec. 5): the MDR solution is "
+                     "exact; 1: the coupling is neglected (only with uncoupled_approximation = 'flag')"),
+    _validity(T_FIELD, "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile with n + k <= 1; "
+              "2: NaN at r = 0 under partial slip for such a profile (the traction is the difference of two "
+              "unbounded pressures there and is not evaluated)"),
+)
+
+
+def _pair(p):
+    """Material pair in the physics' terms: (k, nu, E0, E0_2, nu_2); rigid body 2 is E0_2 = inf."""
+    k = _f(p, "k")
+    nu = gp.holl_ratio(k) if p["poisson"] == "holl_ratio" else _f(p, "nu")
+    body = p["body2"]
+    if body == "identical":
+        return k, nu, _f(p, "E0"), _f(p, "E0"), nu
+    if body == "rigid":
+        return k, nu, _f(p, "E0"), np.inf, None
+    return k, nu, _f(p, "E0"), _f(p, "E0_2"), (nu if p["poisson"] == "holl_ratio" else _f(p, "nu_2"))
+
+
+def _evaluate_tangential(names, p, options):
+    rtol = options["rtol"]
+    strict = p["uncoupled_approximation"] == "reject"
+    quad = _quadrature(options, p)
+    out = {}
+
+    def pair(q):
+        k, nu, e0, e2, nu2 = _pair(q)
+        return dict(k=k, nu=nu, E0=e0, E0_2=e2, nu_2=nu2)
+
+    def pk(q):
+        return {**pair(q), "require_decoupled": strict}
+
+    def dmax(q, prof=None):
+        if prof is None:
+            n, A_n = _power(q)
+            return gtg.max_tangential_displacement(_f(q, "a"), mu=_f(q, "mu"), n=n, A_n=A_n, **pk(q))
+        ratio = gtg.stiffness_ratio(**pk(q))
+        return _f(q, "mu") * ratio * gno.depth_quad(_f(q, "a"), prof, k=_f(q, "k"), rtol=rtol)
+
+    if quad:
+        # c/a and F_N(c)/F_N(a) do not depend on the elastic constants: nominal ones are passed where the
+        # group does not carry the material (k alone matters)
+        nominal = dict(nu=0.0, E0=1.0, c0=1.0)
+
+        def stick(prof, q):
+            # the bisection resolves c/a only to ~eps^(1/(n+k+1)) near gross slip: fx = 1 is c = 0 exactly
+            fx = _f(q, "fx")
+            c = gtg.stick_radius_quad(_f(q, "a"), fx, prof, k=_f(q, "k"), **nominal, rtol=rtol)
+            return np.where(fx >= 1.0, 0.0, c)
+
+        def shear(prof, q):
+            a, mu, r, k = _f(q, "a"), _f(q, "mu"), _f(q, "r") * _f(q, "a"), _f(q, "k")
+            c = stick(prof, q)
+            kw = {**pair(q), "c0": _f(q, "c0"), "rtol": rtol}
+
+            def tau(rr):
+                pc = gno.pressure_quad(rr, np.where(c > 0, c, a), prof, **kw)
+                return mu * (gno.pressure_quad(rr, a, prof, **kw) - np.where(c > 0, pc, 0.0))
+            # at an unbounded centre: +inf in gross slip, not evaluated (NaN, flagged) under partial slip
+            return _centre(r, a, prof, k, tau, np.where(c > 0, np.nan, np.inf))
+
+        def force_ratio(prof, q):
+            # invert delta_x = delta_x,max (1 - g(c)/g(a)) (eq. 42) for c by bisection, then
+            # F_x/(mu F_N) = 1 - F_N(c)/F_N(a) (eq. 45 integrated)
+            a, k = _f(q, "a"), _f(q, "k")
+            D = np.minimum(_f(q, "delta_x") / dmax(q, prof), 1.0)
+            target = gno.depth_quad(a, prof, k=k, rtol=rtol) * (1.0 - D)
+            lo, hi = np.zeros(np.shape(target)), np.ones(np.shape(target))
+            for _ in range(56):
+                mid = 0.5 * (lo + hi)
+                below = gno.depth_quad(np.maximum(mid * a, 1e-300), prof, k=k, rtol=rtol) < target
+                lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
+            c = 0.5 * (lo + hi) * a
+            fa = gno.normal_force_quad(a, prof, k=k, **nominal, rtol=rtol)
+            fc = gno.normal_force_quad(np.where(c > 0, c, a), prof, k=k, **nominal, rtol=rtol)
+            return np.where(D >= 1.0, 1.0, 1.0 - np.where(c > 0, fc, 0.0) / fa)
+
+        fns = {
+            "stick_radius": lambda prof, q: stick(prof, q) / _f(q, "a"),
+            "tangential_displacement": lambda prof, q: gtg.tangential_displacement_quad(
+                _f(q, "a"), _f(q, "fx"), prof, mu=_f(q, "mu"), **pk(q), rtol=rtol),
+            "max_tangential_displacement": lambda prof, q: dmax(q, prof),
+            "force_ratio": force_ratio,
+            "normal_force": lambda prof, q: gno.normal_force_quad(_f(q, "a"), prof, c0=_f(q, "c0"), **pair(q),
+                                                                  rtol=rtol),
+            "shear_traction": shear,
+        }
+        out.update({n: _per_profile(p, fns[n]) for n in names if n in fns})
+    elif {"stick_radius", "tangential_displacement", "max_tangential_displacement", "force_ratio", "normal_force",
+          "shear_traction"} & set(names):        # (a group holding only `coupling` has no geometry)
+        n, A_n = _power(p)
+        a = lambda: _f(p, "a")  # noqa: E731
+        fns = {
+            "stick_radius": lambda: gtg.stick_radius(a(), _f(p, "fx"), k=_f(p, "k"), n=n) / a(),
+            "tangential_displacement": lambda: gtg.tangential_displacement(a(), _f(p, "fx"), mu=_f(p, "mu"), n=n,
+                                                                           A_n=A_n, **pk(p)),
+            "max_tangential_displacement": lambda: dmax(p),
+            "force_ratio": lambda: gtg.force_ratio_from_displacement(
+                np.minimum(_f(p, "delta_x") / dmax(p), 1.0), k=_f(p, "k"), n=n),
+            "normal_force": lambda: gtg.normal_force(a(), c0=_f(p, "c0"), n=n, A_n=A_n, **pair(p)),
+            "shear_traction": lambda: gtg.shear_traction(_f(p, "r") * a(), a(), _f(p, "fx"), mu=_f(p, "mu"),
+                                                         c0=_f(p, "c0"), n=n, A_n=A_n, **pk(p)),
+        }
+        out.update({n: fns[n]() for n in names if n in fns})
+    if "coupling" in names:
+        q = pair(p)
+        ok = gp.tangential_decoupled(q["k"], q["nu"], E0=q["E0"], E0_2=q["E0_2"], nu_2=q["nu_2"])
+        out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
+    if "validity" in names:
+        out["validity"] = nonfinite_flag(out["shear_traction"]) if "shear_traction" in out else np.int8(0)
+    return out
+
+
+def _check_tangential(values, physical, method):
+    problems = _check_profile(values, method)
+    if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
+        return problems
+    g = _grid(values, PAIR)
+    p = {**g, "poisson": values["poisson"], "body2": values["body2"]}
+    k, nu, e0, e2, nu2 = _pair(p)
+    ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
+    if not np.all(ok):
+        bad = tuple(np.argwhere(~ok)[0])
+        at = lambda v: float(np.broadcast_to(v, ok.shape)[bad])  # noqa: E731
+        holl = 1.0 / (2.0 + at(k))
+        need = ("nu must equal the Holl ratio 1/(2+k)" if values["body2"] == "rigid" else
+                "the bodies must be identical (E0_2 = E0, nu_2 = nu) or both have nu = nu_2 = 1/(2+k)")
+        where = f"nu = {at(nu)!r} with k = {at(k)!r}" + (
+            f", E0 = {at(e0)!r}, E0_2 = {at(e2)!r}, nu_2 = {at(nu2)!r}" if values["body2"] == "elastic" else "")
+        problems.append(f"{where} (body2 = {values['body2']!r}): the normal and tangential problems do not "
+                        f"decouple; {need}, here {holl:.12g} (Hess & Popov 2016, sec. 5). Set poisson = "
+                        "'holl_ratio', or uncoupled_approximation = 'flag' to compute the uncoupled approximation "
+                        "with a flag")
+    return problems
+
+
+GRADED_TANGENTIAL = Scenario(
+    name="graded_tangential",
+    summary="Cattaneo-Mindlin partial slip between power-law graded bodies: stick radius, tangential "
+            "displacement and force, shear traction (MDR)",
+    references=REFERENCE,
+    parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL),
+    variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
+    conventions=CONVENTIONS,
+    default_variables=("stick_radius", "tangential_displacement", "max_tangential_displacement", "normal_force",
+                       "shear_traction"),
+)
+
+SCENARIOS: tuple = (GRADED_NORMAL, GRADED_ADHESIVE, GRADED_TANGENTIAL)

@@ -206,5 +206,6 @@ WAVY = Scenario(
             "continuous contact: pressure, displacement, mean and peak pressure, validity of the contact model",
     references=REFERENCE, parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
     physical_switch="E", methods=("auto", "series", *APPROXIMATE), check=check,
+    conventions="plane strain, frictionless; pressure positive in compression; u_z positive into the body",
 )
 SCENARIOS: tuple = (WAVY,)
