@@ -1,0 +1,171 @@
+"""Cattaneo–Mindlin tangential contact: surface (z = 0) stresses and d p_h/dz, divided by E*.
+
+E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic pressure in the
+contact plane of axisymmetric bodies under normal and tangential loading".  Traction on the
+half-space along +x (sheet §1): sigma_xz = -q = mu [sigma_zz(r; a) - sigma_zz(r; c)], eq. (24);
+stick radius c (c = 0: gross slip).  Closed forms: cone eq. (39)-(41); paraboloid eq. (14)-(17),
+(21) with the stick-zone difference; sliding flat punch eq. (18), (19), regular part of (22) times
+its depth.  General profile: eq. (24)-(26) from the 1-D integrals of ``integrals``.
+
+Functions work on 1-D arrays of points with r > 0 where the tangential load is active
+(mu > 0, c < a).  Points with r <= c count as stick zone, r <= a as contact.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .common import arccosh_ratio, hertz_f2, hertz_f4, sqrt_diff
+
+__all__ = ["shear_closed", "inplane_closed", "dpdz_closed", "shear_from_integrals",
+           "inplane_from_moments", "dpdz_from_integrals", "inplane_angles"]
+
+
+def _err():
+    return np.errstate(divide="ignore", invalid="ignore", over="ignore")
+
+
+def _zero_where_x0(x, v):
+    """x * (something infinite) on the edge circles: the radial limit along x = 0 is 0."""
+    return np.where(x == 0.0, 0.0, v)
+
+
+def shear_closed(closed, r, a, c, mu):
+    """sigma_xz / E*: cone eq. (39), paraboloid eq. (14) with the stick-zone difference, flat punch
+    eq. (18) (sliding; its stick radius plays no role)."""
+    kind = closed[0]
+    sa, sc = sqrt_diff(a, r), sqrt_diff(c, r)
+    with _err():
+        if kind == "cone":
+            p0 = 0.5 * closed[1]
+            stick = r <= c
+            # ln((a + sqrt(a^2-r^2)) / (c + sqrt(c^2-r^2))): no difference of two arccosh (sheet §0)
+            v_stick = np.log((a + sa) / np.where(stick, c + sc, 1.0))
+            v_slip = arccosh_ratio(a, np.minimum(r, a))
+            return np.where(r <= a, -mu * p0 * np.where(stick, v_stick, v_slip), 0.0)
+        if kind == "paraboloid":
+            P = 2.0 / (math.pi * closed[1])
+            return -mu * P * (np.where(r <= a, sa, 0.0) - np.where(r <= c, sc, 0.0))
+        if kind == "flat_punch":
+            return np.where(r <= a, -mu * closed[2] / (math.pi * sa), 0.0)
+    raise ValueError(f"no closed form for {kind!r}")  # pragma: no cover
+
+
+def inplane_closed(closed, x, y, r, a, c, nu, mu):
+    """(sxx, syy, sxy) / E* of the tangential load: cone eq. (40), paraboloid eqs. (15)-(17)
+    (F, H by series far outside), flat punch eq. (19).  Zero in the stick zone r <= c."""
+    kind = closed[0]
+    X, Y = x / r, y / r
+    X2, Y2 = X * X, Y * Y
+    with _err():
+        if kind == "cone":
+            p0 = 0.5 * closed[1]
+            outside = r > a
+            A = np.where(outside, sqrt_diff(r, a) / r, 0.0)
+            Cc = sqrt_diff(r, c) / r
+            # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C)  (sheet §0)
+            D1 = np.where(outside, ((a - c) * (a + c) / (r * r)) / (A + Cc), Cc)
+            D3 = -D1 * (A * A + A * Cc + Cc * Cc)          # A^3 - C^3
+            k = mu * p0
+            sxx = 2.0 * k * X * (D1 * (nu * X2 - (1.0 + nu)) + nu / 3.0 * (4.0 * X2 - 3.0) * D3)
+            syy = -2.0 * nu * k * X * (D1 * X2 + (1.0 - 4.0 * Y2) / 3.0 * D3)
+            sxy = k * Y * (D1 * (2.0 * nu * X2 - 1.0) + 2.0 * nu / 3.0 * (4.0 * X2 - 1.0) * D3)
+        elif kind == "paraboloid":
+            R = closed[1]
+            th_a = np.where(r <= a, 0.5 * math.pi, np.arctan2(a, sqrt_diff(r, a)))
+            th_c = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, sqrt_diff(r, c)))
+            F = hertz_f2(th_a) - hertz_f2(th_c)            # F / r^2 of (16)-(17), difference a - c
+            H = hertz_f4(th_a) - hertz_f4(th_c)            # H / r^4
+            k = mu / (math.pi * R)
+            sxx = -2.0 * k * x * (((1.0 + nu) - 3.0 * nu * Y2) * F - nu * (1.0 - 4.0 * Y2) * H)
+            syy = -2.0 * nu * k * x * (3.0 * Y2 * F + (1.0 - 4.0 * Y2) * H)
+            sxy = -k * y * (((1.0 - 2.0 * nu) + 6.0 * nu * X2) * F + 2.0 * nu * (1.0 - 4.0 * X2) * H)
+        elif kind == "flat_punch":
+            depth = closed[2]
+            outside = r > a
+            s = np.where(outside, sqrt_diff(r, a), 1.0)
+            b2 = (a / r) ** 2
+            wy = b2 + Y2 * (3.0 - 4.0 * b2)                 # W_y / r^4
+            wx = b2 + X2 * (3.0 - 4.0 * b2)
+            k = mu * depth * a / (math.pi * r * r * s)
+            sxx = np.where(outside, -2.0 * k * x * ((1.0 + nu) - nu * wy), 0.0)
+            syy = np.where(outside, -2.0 * nu * k * x * wy, 0.0)
+            sxy = np.where(outside, -k * y * ((1.0 - 2.0 * nu) + 2.0 * nu * wx), 0.0)
+            return sxx, syy, sxy
+        else:  # pragma: no cover
+            raise ValueError(f"no closed form for {kind!r}")
+    stick = r <= c
+    return (np.where(stick, 0.0, sxx), np.where(stick, 0.0, syy), np.where(stick, 0.0, sxy))
+
+
+def dpdz_closed(closed, x, r, a, c, nu, mu):
+    """Tangential d p_h/dz / E*: cone eq. (41), paraboloid eq. (21) with the stick-zone difference,
+    flat punch regular part of eq. (22).  +-inf on r = c (stick side) and r = a (contact side),
+    with the sign of x; 0 there on x = 0 (radial limit)."""
+    kind = closed[0]
+    sa, sc = sqrt_diff(a, r), sqrt_diff(c, r)
+    C2 = 2.0 * (1.0 + nu) / 3.0
+    inside, stick = r <= a, r <= c
+    with _err():
+        if kind == "cone":
+            k = C2 * mu * 0.5 * closed[1]
+            # (a/sqrt(a^2-r^2) - c/sqrt(c^2-r^2)) / r^2 = 1/(sa(a+sa)) - 1/(sc(c+sc))  (sheet §0)
+            v_stick = -k * x * (1.0 / (sa * (a + sa)) - 1.0 / (sc * (c + sc)))
+            v_slip = -k * x * a / (r * r * sa)
+            v = np.where(stick, v_stick, np.where(inside, v_slip, 0.0))
+        elif kind == "paraboloid":
+            k = 2.0 * C2 * mu / (math.pi * closed[1])
+            v = -k * x * (np.where(inside, 1.0 / sa, 0.0) - np.where(stick, 1.0 / sc, 0.0))
+        elif kind == "flat_punch":
+            v = np.where(inside, C2 * mu * closed[2] * x / (math.pi * sa ** 3), 0.0)
+        else:  # pragma: no cover
+            raise ValueError(f"no closed form for {kind!r}")
+    return _zero_where_x0(x, v)
+
+
+# -- general profile ----------------------------------------------------------------------------
+
+def shear_from_integrals(r, a, mu, G_slip):
+    """sigma_xz / E* = -(mu/pi) int_max(r,c)^a g'(u) du / sqrt(u^2 - r^2), eq. (24); G_slip is that
+    integral (t over [arccosh(max(r,c)/r), arccosh(a/r)])."""
+    return np.where(r <= a, -mu / math.pi * G_slip, 0.0)
+
+
+def inplane_angles(r, a, c):
+    """Integration limits of eq. (25) in t (u = r sin t): [arcsin(min(r,c)/r), arcsin(min(r,a)/r)]."""
+    th_hi = np.where(r <= a, 0.5 * math.pi, np.arctan2(a, sqrt_diff(r, a)))
+    th_lo = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, sqrt_diff(r, c)))
+    return th_lo, th_hi
+
+
+def inplane_from_moments(x, y, r, nu, mu, P0, P2):
+    """(sxx, syy, sxy) / E* of eq. (25) from P0 = I[1]/r and P2 = I[u^2]/r^3: with X = x/r,
+    Y = y/r the r^-6 prefactors cancel, so nothing is divided by a small r."""
+    X, Y = x / r, y / r
+    X2, Y2 = X * X, Y * Y
+    k = mu / math.pi
+    sxx = -2.0 * k * X * (((1.0 + nu) - 3.0 * nu * Y2) * P0 - nu * (1.0 - 4.0 * Y2) * P2)
+    syy = -2.0 * nu * k * X * (3.0 * Y2 * P0 + (1.0 - 4.0 * Y2) * P2)
+    sxy = -k * Y * (((1.0 - 2.0 * nu) + 6.0 * nu * X2) * P0 + 2.0 * nu * (1.0 - 4.0 * X2) * P2)
+    return sxx, syy, sxy
+
+
+def dpdz_from_integrals(profile, x, r, a, c, nu, mu, H_slip):
+    """Tangential d p_h/dz / E*, eq. (26), in a form free of the r -> 0 cancellation of its bracket:
+    with psi(v) = 1/(sqrt(v^2-r^2)(v + sqrt(v^2-r^2))) = (v/sqrt(v^2-r^2) - 1)/r^2,
+
+      r <= c:      -C_T x [g'(a) psi(a) - g'(c) psi(c) - int_c^a g''(u) psi(u) du]
+      c < r <= a:  -C_T x [g'(r)/r^2 + g'(a) psi(a) - int_r^a g''(u) psi(u) du]
+
+    (the identity a g'(a)/sqrt(a^2-r^2) = g'(a)(1 + r^2 psi(a)) and int u g''/sqrt = int g''(1 +
+    r^2 psi) turn eq. (26) into these).  H_slip = int_max(r,c)^a g'' psi du.  C_T = 2(1+nu)mu/(3 pi)."""
+    sa, sc = sqrt_diff(a, r), sqrt_diff(c, r)
+    stick = r <= c
+    with _err():
+        psi_a = 1.0 / (sa * (a + sa))
+        psi_c = 1.0 / (sc * (c + sc))
+        first = np.where(stick, -profile.dg(c) * np.where(stick, psi_c, 0.0), profile.dg(r) / (r * r))
+        bracket = first + profile.dg(a) * psi_a - H_slip
+        v = -2.0 * (1.0 + nu) * mu / (3.0 * math.pi) * x * bracket
+    return _zero_where_x0(x, np.where(r <= a, v, 0.0))
