@@ -126,3 +126,28 @@ def _evaluate_group(recipe, dims, names, fixed, options, chunking):
     )
     out = out if isinstance(out, tuple) else (out,)
     return [o.transpose(*dims).data for o in out]
+
+
+def estimate(recipe: Recipe, chunks: dict[str, int] | None = None, sample_points: int = 20_000) -> dict:
+    """What a run will produce before anything large is computed: dimensions, points, bytes, and a
+    time extrapolated from evaluating a small leading slice of the sweep."""
+    import time
+
+    ds = build(recipe, chunks)
+    nbytes = int(sum(v.size * v.dtype.itemsize for v in ds.data_vars.values()))
+    # shrink the leading dimensions until the slice has about `sample_points` points
+    sel, points = {}, recipe.size
+    for dim in recipe.swept:
+        if points <= sample_points:
+            break
+        keep = max(1, ds.sizes[dim] * sample_points // points)
+        sel[dim] = slice(0, keep)
+        points = points // ds.sizes[dim] * keep
+    sample = ds.isel(sel)
+    start = time.perf_counter()
+    sample.compute(scheduler="threads")
+    elapsed = time.perf_counter() - start
+    seconds = elapsed * recipe.size / max(1, points)
+    return {"dims": dict(recipe.shape), "points": recipe.size, "bytes": nbytes,
+            "chunks": {d: c[0] for d, c in ds.chunks.items()} if ds.chunks else {},
+            "seconds": seconds, "sample_points": points}

@@ -7,7 +7,7 @@ from pathlib import Path
 
 from . import __version__
 from .api import describe, scenarios
-from .build import build
+from .build import build, estimate
 from .io import OutputError, to_netcdf
 from .recipe import RecipeError, load
 
@@ -50,6 +50,8 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--plot", action="store_true", help="also write a quick-look PNG beside each file "
                      "(needs matplotlib: pip install 'stressfields[plot]')")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--dry-run", action="store_true", help="print dimensions, points, output size and an "
+                     "estimated time (from a small sample), and write nothing")
     run.set_defaults(func=_run)
 
     lst = sub.add_parser("list", help="list the scenarios")
@@ -65,7 +67,46 @@ def _parser() -> argparse.ArgumentParser:
 
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
     sch.set_defaults(func=_schema)
+
+    hsh = sub.add_parser("hash", help="recompute a file's content hash and check it against the stored one")
+    hsh.add_argument("files", nargs="+", type=Path)
+    hsh.set_defaults(func=_hash)
+
+    bench = sub.add_parser("bench", help="chart accuracy against run time for every method (not a test)")
+    bench.add_argument("-d", "--out-dir", type=Path, default=Path("docs/bench"),
+                       help="where the results NetCDF and the PNG chart go (default: docs/bench)")
+    bench.add_argument("--quick", action="store_true", help="fewer repeats and smaller cases")
+    bench.add_argument("--peers", action="store_true",
+                       help="also time ContactMechanics (pip install 'stressfields[bench]')")
+    bench.set_defaults(func=_bench)
     return p
+
+
+def _hash(args) -> int:
+    from .hashing import file_hash
+
+    bad = 0
+    for path in args.files:
+        if not path.is_file():
+            raise UsageError(f"{path}: no such file")
+        try:
+            digest, stored = file_hash(path)
+        except (OSError, ValueError) as exc:
+            raise UsageError(f"{path}: not a readable NetCDF file ({exc})") from None
+        if stored is None:
+            print(f"{path}: {digest} (no stored hash to check)")
+        elif stored == digest:
+            print(f"{path}: {digest} ok")
+        else:
+            print(f"{path}: {digest} MISMATCH (stored {stored})")
+            bad += 1
+    return 1 if bad else 0
+
+
+def _bench(args) -> int:
+    from .bench import run
+
+    return run(out_dir=args.out_dir, quick=args.quick, peers=args.peers)
 
 
 def _run(args) -> int:
@@ -80,9 +121,18 @@ def _run(args) -> int:
             raise UsageError(f"--chunks: {', '.join(sorted(bad))} is not a swept dimension of {path} "
                              f"(swept: {', '.join(recipe.swept) or 'none'})")
         target = args.output or args.out_dir / f"{path.stem}.nc"
-        if target.exists() and not args.overwrite:
+        if target.exists() and not (args.overwrite or args.dry_run):
             raise OutputError(f"{target} exists; refusing to overwrite it (use --overwrite)")
         jobs.append((path, recipe, target))
+    if args.dry_run:
+        for path, recipe, target in jobs:
+            e = estimate(recipe, chunks)
+            dims = " x ".join(f"{d}={n}" for d, n in e["dims"].items()) or "scalar"
+            print(f"{path} -> {target}\n  scenario {recipe.scenario.name}: {dims} = {e['points']:,} points; "
+                  f"variables: {', '.join(recipe.variables)}\n  output about {e['bytes'] / 1e6:,.1f} MB; "
+                  f"chunks {e['chunks']}; estimated {e['seconds']:,.1f} s here (from {e['sample_points']:,} "
+                  "points)")
+        return 0
     if not args.output:
         args.out_dir.mkdir(parents=True, exist_ok=True)
     scheduler, client = _scheduler(args.scheduler)

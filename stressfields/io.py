@@ -8,6 +8,8 @@ from pathlib import Path
 
 import xarray as xr
 
+from .hashing import stamp
+
 
 class OutputError(OSError):
     """The target cannot be written (exists, unwritable, disk full); nothing was left behind."""
@@ -17,8 +19,8 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
               progress: bool = False, scheduler=None) -> Path:
     """Compute ``ds`` chunk by chunk and write it to ``path`` atomically.
 
-    The file appears under its final name only once it is complete; an existing file is
-    refused unless ``overwrite``. ``scheduler`` is passed to dask (None: the local threads).
+    The file appears under its final name only once it is complete, with its content hash
+    (see `hashing`) stored as a global attribute; an existing file is refused unless ``overwrite``. ``scheduler`` is passed to dask (None: the local threads).
     """
     target = Path(path)
     if target.exists() and not overwrite:
@@ -34,6 +36,7 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
         delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds), compute=False)
         with _progress(progress):
             delayed.compute(scheduler=scheduler)
+        stamp(tmp)
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
         os.replace(tmp, target)
