@@ -122,6 +122,13 @@ def _evaluate(make_profile):
 
         nu, mu, ux0 = f("nu"), f("mu"), f("ux0")
         c = ax.stick_radius(a, nu, mu, ux0, profile)
+        c_kernel, mu_kernel = c, mu
+        if profile.kind == "flat_punch":
+            # a flat punch either sticks whole or slides; sticking, its traction is the sliding one
+            # with mu E* delta replaced by G* u_x0 (eq. 20), which the kernels take as c = 0
+            stuck = (c == a) & (ux0 > 0) & (mu > 0)
+            mu_kernel = np.where(stuck, 2.0 * (1.0 - nu) / (2.0 - nu) * ux0, mu)
+            c_kernel = np.where(stuck, 0.0, c)
         if "stick_radius" in names:
             out["stick_radius"] = c if physical else c / a
         spatial = [n for n in local if n != "stick_radius"]
@@ -138,7 +145,7 @@ def _evaluate(make_profile):
             want_stress = list(STRESS)
         if want_stress:
             comps = tuple(n.removeprefix("sigma_") for n in want_stress)
-            sig = ax.surface_stress(xs, ys, a, c, nu, mu, profile, components=comps, method=method,
+            sig = ax.surface_stress(xs, ys, a, c_kernel, nu, mu_kernel, profile, components=comps, method=method,
                                     rtol=options["rtol"])
             stress = {f"sigma_{k}": v * stress_scale for k, v in sig.items()}
             out.update({n: stress[n] for n in names if n in STRESS})
@@ -147,7 +154,7 @@ def _evaluate(make_profile):
             if any(n in names for n in PRINCIPAL):
                 out.update(zip(PRINCIPAL, principal_stresses(*(stress[s] for s in STRESS))))
         if "dpdz" in names:
-            g = ax.surface_dpdz(xs, ys, a, c, nu, mu, profile, method=method, rtol=options["rtol"])
+            g = ax.surface_dpdz(xs, ys, a, c_kernel, nu, mu_kernel, profile, method=method, rtol=options["rtol"])
             out["dpdz"] = g * (e_star if physical else a / pm_hat)
         if "region" in names:
             out["region"] = _region(np.hypot(xs, ys), a, c, mu, ux0)
@@ -182,7 +189,7 @@ def _general(p, physical):
     if kind == "power_law":
         return ax.power_law(p["A"] if physical else 1.0, p["n"])
     if kind == "flat_punch":
-        return ax.flat_punch(p["radius"] if physical else 1.0)
+        return ax.flat_punch(p["radius"], depth=float(p["delta"])) if physical else ax.flat_punch(1.0)
     return ax.tabulated(np.asarray(p["profile_r"]), np.asarray(p["profile_f"]))
 
 
@@ -206,6 +213,9 @@ def _check_general(values, physical, method):
             if np.any(deltas > reach):
                 problems.append(f"delta = {float(deltas.max())!r} m exceeds the depth {reach!r} m at which the "
                                 f"contact reaches the end of the table, r = {r[-1]!r} m; extend profile_r")
+    if values.get("profile") == "flat_punch" and isinstance(values.get("delta"), np.ndarray):
+        problems.append("delta cannot be swept for profile = 'flat_punch': its contact radius is the punch "
+                        "radius and every field scales with delta; give one value")
     if method == "closed" and values.get("profile") in ("tabulated", "power_law") and not (
             values.get("profile") == "power_law" and values.get("n") in (1.0, 2.0)):
         problems.append(f"method.method = 'closed' has no closed form for profile = {values.get('profile')!r}; "
