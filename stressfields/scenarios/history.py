@@ -1,0 +1,2 @@
+"""Tangential loading histories (fretting) on axisymmetric indenters (filled in by the history family)."""
+SCENARIOS: tuple = ()
