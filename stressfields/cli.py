@@ -133,10 +133,10 @@ def _run(args) -> int:
                   f"chunks {e['chunks']}; estimated {e['seconds']:,.1f} s here (from {e['sample_points']:,} "
                   "points)")
         return 0
-    if not args.output:
-        args.out_dir.mkdir(parents=True, exist_ok=True)
     scheduler, client = _scheduler(args.scheduler)
     try:
+        if not args.output:
+            args.out_dir.mkdir(parents=True, exist_ok=True)
         for path, recipe, target in jobs:
             ds = build(recipe, chunks)
             if not args.quiet:
