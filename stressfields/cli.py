@@ -9,9 +9,12 @@ from . import __version__
 from .api import describe, scenarios
 from .build import build, estimate
 from .io import OutputError, to_netcdf
+from .parts import parts_dir, write_in_parts
 from .recipe import RecipeError, load
 
 LOCAL_SCHEDULERS = ("threads", "synchronous", "processes")
+#: sweeps larger than this are written in resumable parts
+PARTS_ABOVE = 50_000_000
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -50,6 +53,10 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--plot", action="store_true", help="also write a quick-look PNG beside each file "
                      "(needs matplotlib: pip install 'stressfields[plot]')")
     run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    run.add_argument("--resume", action="store_true", help="finish an interrupted run from its finished parts "
+                     "(OUT.nc.parts/); implies writing in parts")
+    run.add_argument("--parts", action="store_true", help="write in resumable parts along the first dimension "
+                     f"(automatic above {PARTS_ABOVE:.0e} points)")
     run.add_argument("--dry-run", action="store_true", help="print dimensions, points, output size and an "
                      "estimated time (from a small sample), and write nothing")
     run.set_defaults(func=_run)
@@ -123,6 +130,9 @@ def _run(args) -> int:
         target = args.output or args.out_dir / f"{path.stem}.nc"
         if target.exists() and not (args.overwrite or args.dry_run):
             raise OutputError(f"{target} exists; refusing to overwrite it (use --overwrite)")
+        if parts_dir(target).exists() and not (args.resume or args.dry_run):
+            raise OutputError(f"{parts_dir(target)} holds parts of an interrupted run; use --resume to "
+                              "finish it, or remove the folder")
         jobs.append((path, recipe, target))
     if args.dry_run:
         for path, recipe, target in jobs:
@@ -143,8 +153,12 @@ def _run(args) -> int:
                 dims = " x ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "scalar"
                 print(f"{path} -> {target}  [{recipe.scenario.name}: {dims}, "
                       f"{len(ds.data_vars)} variables]", file=sys.stderr)
-            to_netcdf(ds, target, overwrite=args.overwrite, progress=not args.quiet and client is None,
-                      scheduler=scheduler)
+            show = not args.quiet and client is None
+            if args.resume or args.parts or recipe.size > PARTS_ABOVE:
+                write_in_parts(ds, target, resume=args.resume, overwrite=args.overwrite, progress=show,
+                               scheduler=scheduler)
+            else:
+                to_netcdf(ds, target, overwrite=args.overwrite, progress=show, scheduler=scheduler)
             if args.plot:
                 from .plot import quicklook
 

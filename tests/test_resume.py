@@ -1,0 +1,62 @@
+"""A run killed at any moment leaves no file at the target and no corrupt part; --resume finishes
+it and the content hash equals that of an uninterrupted run."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+from stressfields import cli
+from stressfields.hashing import file_hash
+
+RECIPE = """scenario = "conical"
+[parameters]
+nu = { start = 0.0, stop = 0.5, num = 12 }
+mu = [0.2, 0.3, 0.4]
+ux0 = 0.25
+y = { start = -1.5, stop = 1.5, num = 101 }
+x = { start = -1.5, stop = 1.5, num = 121 }
+[output]
+chunks = { nu = 1 }
+"""
+
+
+def test_sigkill_then_resume(tmp_path):
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(RECIPE)
+    whole, target = tmp_path / "whole.nc", tmp_path / "out.nc"
+    assert cli.main(["run", str(recipe), "-o", str(whole), "-q"]) == 0
+
+    proc = subprocess.Popen([sys.executable, "-m", "stressfields", "run", str(recipe), "-o", str(target),
+                             "-q", "--parts"], stderr=subprocess.PIPE)
+    manifest = tmp_path / "out.nc.parts" / "manifest.json"
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and proc.poll() is None:
+        if manifest.exists() and len(json.loads(manifest.read_text())["parts"]) >= 2:
+            break
+        time.sleep(0.01)
+    assert proc.poll() is None, "the run finished before it could be killed; make the recipe larger"
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+
+    assert not target.exists()
+    done = json.loads(manifest.read_text())["parts"]
+    assert 2 <= len(done) < 12
+    for name, digest in done.items():        # every published part is complete and intact
+        assert file_hash(tmp_path / "out.nc.parts" / name) == (digest, digest)
+
+    assert cli.main(["run", str(recipe), "-o", str(target), "-q"]) == 2        # refuses without --resume
+    assert cli.main(["run", str(recipe), "-o", str(target), "-q", "--resume"]) == 0
+    assert not (tmp_path / "out.nc.parts").exists()
+    assert file_hash(target)[0] == file_hash(whole)[0] == file_hash(target)[1]
+
+
+def test_resume_refuses_parts_of_another_recipe(tmp_path):
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(RECIPE)
+    (tmp_path / "out.nc.parts").mkdir()
+    (tmp_path / "out.nc.parts" / "manifest.json").write_text(
+        json.dumps({"recipe_sha256": "0" * 64, "dim": "nu", "edges": [0, 12], "parts": {}}))
+    assert cli.main(["run", str(recipe), "-o", str(tmp_path / "out.nc"), "-q", "--resume"]) == 2
+    assert not (tmp_path / "out.nc").exists()
