@@ -7,8 +7,11 @@ Nothing is computed until the dataset is written or `.compute()`d.
 """
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import xarray as xr
+from dask.array import PerformanceWarning
 
 from . import cf
 from .recipe import Recipe
@@ -118,36 +121,45 @@ def _evaluate_group(recipe, dims, names, fixed, options, chunking):
     if not dims:
         return [np.asarray(v) for v in kernel()]
     inputs = [xr.DataArray(recipe.values[d], dims=(d,)).chunk({d: chunking[d]}) for d in dims]
-    out = xr.apply_ufunc(
-        kernel, *inputs,
-        output_core_dims=[[] for _ in names],
-        dask="parallelized",
-        output_dtypes=dtypes,
-    )
+    with warnings.catch_warnings():
+        # dask notes that broadcasting 1-D coordinates multiplies chunks: that is the point
+        warnings.simplefilter("ignore", category=PerformanceWarning)
+        out = xr.apply_ufunc(
+            kernel, *inputs,
+            output_core_dims=[[] for _ in names],
+            dask="parallelized",
+            output_dtypes=dtypes,
+        )
     out = out if isinstance(out, tuple) else (out,)
     return [o.transpose(*dims).data for o in out]
 
 
-def estimate(recipe: Recipe, chunks: dict[str, int] | None = None, sample_points: int = 20_000) -> dict:
+def estimate(recipe: Recipe, chunks: dict[str, int] | None = None, sample_points: int = 200_000) -> dict:
     """What a run will produce before anything large is computed: dimensions, points, bytes, and a
     time extrapolated from evaluating a small leading slice of the sweep."""
+    import dataclasses
     import time
 
     ds = build(recipe, chunks)
     nbytes = int(sum(v.size * v.dtype.itemsize for v in ds.data_vars.values()))
-    # shrink the leading dimensions until the slice has about `sample_points` points
-    sel, points = {}, recipe.size
-    for dim in recipe.swept:
-        if points <= sample_points:
-            break
-        keep = max(1, ds.sizes[dim] * sample_points // points)
-        sel[dim] = slice(0, keep)
-        points = points // ds.sizes[dim] * keep
-    sample = ds.isel(sel)
-    start = time.perf_counter()
-    sample.compute(scheduler="threads")
-    elapsed = time.perf_counter() - start
-    seconds = elapsed * recipe.size / max(1, points)
+    # a recipe cut down to about n points (leading dimensions shrink first): slicing the lazy
+    # dataset instead would still compute whole chunks
+    def timed(n: int) -> tuple[float, int]:
+        values, points = dict(recipe.values), recipe.size
+        for dim in recipe.swept:
+            if points <= n:
+                break
+            keep = max(1, len(values[dim]) * n // points)
+            points = points // len(values[dim]) * keep
+            values[dim] = values[dim][:keep]
+        sample = build(dataclasses.replace(recipe, values=values))
+        start = time.perf_counter()
+        sample.compute(scheduler="threads")
+        return time.perf_counter() - start, points
+
+    timed(sample_points // 20)              # warm-up: first-call costs are not per point
+    t2, n2 = timed(sample_points)
+    seconds = t2 / max(1, n2) * recipe.size
     return {"dims": dict(recipe.shape), "points": recipe.size, "bytes": nbytes,
             "chunks": {d: c[0] for d, c in ds.chunks.items()} if ds.chunks else {},
-            "seconds": seconds, "sample_points": points}
+            "seconds": seconds, "sample_points": n2}

@@ -16,11 +16,13 @@ class OutputError(OSError):
 
 
 def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False,
-              progress: bool = False, scheduler=None) -> Path:
+              progress: bool = False, scheduler=None, fill=None) -> Path:
     """Compute ``ds`` chunk by chunk and write it to ``path`` atomically.
 
     The file appears under its final name only once it is complete, with its content hash
-    (see `hashing`) stored as a global attribute; an existing file is refused unless ``overwrite``. ``scheduler`` is passed to dask (None: the local threads).
+    (see `hashing`) stored as a global attribute; an existing file is refused unless ``overwrite``.
+    ``scheduler`` is passed to dask (None: the local threads). ``fill(tmp_path)``, if given, writes
+    the values instead of computing ``ds`` (used to join finished parts).
     """
     target = Path(path)
     if target.exists() and not overwrite:
@@ -34,8 +36,11 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
     os.close(fd)
     try:
         delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds), compute=False)
-        with _progress(progress):
-            delayed.compute(scheduler=scheduler)
+        if fill is None:
+            with _progress(progress):
+                delayed.compute(scheduler=scheduler)
+        else:
+            fill(tmp)   # the values come from elsewhere (finished parts): the layout is written above
         stamp(tmp)
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())

@@ -82,19 +82,24 @@ def _dump(folder: Path, manifest: dict) -> None:
 
 
 def _join(folder: Path, manifest: dict, template: xr.Dataset, target: Path, overwrite: bool) -> None:
+    """Copy the parts into one file, one part at a time, so memory stays at the size of a part."""
+    import netCDF4
+
     dim = manifest["dim"]
-    pieces = [xr.open_dataset(folder / name, chunks={}) for name in sorted(manifest["parts"])]
-    try:
-        joined = xr.concat(pieces, dim=dim, data_vars="minimal", coords="minimal", compat="override",
-                           join="override", combine_attrs="override")
-        # back to what the direct write would hold: the template's attributes and string types
-        joined.attrs = dict(template.attrs)
-        for name in list(joined.variables):
-            joined[name].attrs = dict(template[name].attrs)
-            if joined[name].dtype.kind == "U":
-                joined[name] = joined[name].astype(object)
-        joined.attrs.pop(ATTR, None)
-        to_netcdf(joined, target, overwrite=overwrite)
-    finally:
-        for p in pieces:
-            p.close()
+    names = sorted(manifest["parts"])
+    edges = manifest["edges"]
+
+    def fill(path: str) -> None:
+        with netCDF4.Dataset(path, "a") as out:
+            for i, name in enumerate(names):
+                with netCDF4.Dataset(folder / name) as part:
+                    for var, values in part.variables.items():
+                        if dim in values.dimensions:
+                            axis = values.dimensions.index(dim)
+                            index = [slice(None)] * values.ndim
+                            index[axis] = slice(edges[i], edges[i + 1])
+                            out[var][tuple(index)] = values[...]
+                        elif i == 0:
+                            out[var][...] = values[...]
+
+    to_netcdf(template, target, overwrite=overwrite, fill=fill)
