@@ -95,11 +95,28 @@ def _join(folder: Path, manifest: dict, template: xr.Dataset, target: Path, over
                 with netCDF4.Dataset(folder / name) as part:
                     for var, values in part.variables.items():
                         if dim in values.dimensions:
-                            axis = values.dimensions.index(dim)
-                            index = [slice(None)] * values.ndim
-                            index[axis] = slice(edges[i], edges[i + 1])
-                            out[var][tuple(index)] = values[...]
+                            offset = [0] * values.ndim
+                            offset[values.dimensions.index(dim)] = edges[i]
+                            _copy(values, out[var], offset)
                         elif i == 0:
-                            out[var][...] = values[...]
+                            _copy(values, out[var], [0] * values.ndim)
 
     to_netcdf(template, target, overwrite=overwrite, fill=fill)
+
+
+def _copy(src, dst, offset: list[int], limit: int = 64 * 2 ** 20) -> None:
+    """dst[offset + index] = src[index], in slabs of at most ~`limit` bytes along one axis."""
+    shape = src.shape
+    if not shape:
+        dst[...] = src[...]
+        return
+    axis = next((k for k, n in enumerate(shape) if n > 1), 0)
+    row = int(np.prod(shape, dtype=np.int64)) // max(1, shape[axis]) * src.dtype.itemsize
+    step = max(1, limit // max(1, row))
+    for start in range(0, shape[axis], step):
+        stop = min(shape[axis], start + step)
+        src_index = [slice(None)] * len(shape)
+        src_index[axis] = slice(start, stop)
+        dst_index = [slice(o, o + n) for o, n in zip(offset, shape)]
+        dst_index[axis] = slice(offset[axis] + start, offset[axis] + stop)
+        dst[tuple(dst_index)] = src[tuple(src_index)]

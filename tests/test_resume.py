@@ -60,3 +60,15 @@ def test_resume_refuses_parts_of_another_recipe(tmp_path):
         json.dumps({"recipe_sha256": "0" * 64, "dim": "nu", "edges": [0, 12], "parts": {}}))
     assert cli.main(["run", str(recipe), "-o", str(tmp_path / "out.nc"), "-q", "--resume"]) == 2
     assert not (tmp_path / "out.nc").exists()
+
+
+def test_part_copy_in_slabs_places_every_value():
+    import numpy as np
+
+    from stressfields.parts import _copy
+
+    src = np.arange(1 * 7 * 5, dtype=float).reshape(1, 7, 5)
+    dst = np.zeros((3, 7, 5))
+    _copy(src, dst, [2, 0, 0], limit=40)          # 40 bytes: one row of 5 doubles per slab
+    np.testing.assert_array_equal(dst[2], src[0])
+    assert not dst[:2].any()
