@@ -37,7 +37,8 @@ def content_hash(ds: xr.Dataset) -> str:
 
 def file_hash(path: str | Path) -> tuple[str, str | None]:
     """(recomputed hash, hash stored in the file or None)."""
-    with xr.open_dataset(path, decode_cf=False, mask_and_scale=False, decode_times=False) as ds:
+    # cache=False: slabs are read one at a time, never the whole variable
+    with xr.open_dataset(path, decode_cf=False, mask_and_scale=False, decode_times=False, cache=False) as ds:
         return content_hash(ds), ds.attrs.get(ATTR)
 
 
@@ -51,13 +52,24 @@ def stamp(path: str | Path) -> str:
     return digest
 
 
-def _blocks(var: xr.Variable):
-    if var.ndim == 0 or var.size * var.dtype.itemsize <= _SLICE_BYTES:
-        yield np.asarray(var.values)
+def slabs(shape: tuple[int, ...], itemsize: int, limit: int = _SLICE_BYTES):
+    """Index tuples that cover an array of `shape` in C order, each slab at most ~`limit` bytes."""
+    if not shape:
+        yield ()
         return
-    step = max(1, _SLICE_BYTES // max(1, (var.size // var.shape[0]) * var.dtype.itemsize))
-    for start in range(0, var.shape[0], step):
-        yield np.asarray(var[start:start + step].values)
+    k, inner = len(shape) - 1, itemsize
+    while k > 0 and inner * shape[k] <= limit:
+        inner *= shape[k]
+        k -= 1
+    step = max(1, limit // max(1, inner))
+    for outer in np.ndindex(*shape[:k]):
+        for start in range(0, shape[k], step):
+            yield outer + (slice(start, min(shape[k], start + step)),)
+
+
+def _blocks(var: xr.Variable):
+    for index in slabs(var.shape, var.dtype.itemsize):
+        yield np.asarray(var[index].values)
 
 
 def _bytes(values: np.ndarray) -> bytes:

@@ -19,7 +19,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .hashing import ATTR, file_hash
+from .hashing import file_hash, slabs
 from .io import OutputError, to_netcdf
 
 MANIFEST = "manifest.json"
@@ -105,18 +105,11 @@ def _join(folder: Path, manifest: dict, template: xr.Dataset, target: Path, over
 
 
 def _copy(src, dst, offset: list[int], limit: int = 64 * 2 ** 20) -> None:
-    """dst[offset + index] = src[index], in slabs of at most ~`limit` bytes along one axis."""
-    shape = src.shape
-    if not shape:
+    """dst[offset + index] = src[index], one slab of at most ~`limit` bytes at a time."""
+    if not src.shape:
         dst[...] = src[...]
         return
-    axis = next((k for k, n in enumerate(shape) if n > 1), 0)
-    row = int(np.prod(shape, dtype=np.int64)) // max(1, shape[axis]) * src.dtype.itemsize
-    step = max(1, limit // max(1, row))
-    for start in range(0, shape[axis], step):
-        stop = min(shape[axis], start + step)
-        src_index = [slice(None)] * len(shape)
-        src_index[axis] = slice(start, stop)
-        dst_index = [slice(o, o + n) for o, n in zip(offset, shape)]
-        dst_index[axis] = slice(offset[axis] + start, offset[axis] + stop)
-        dst[tuple(dst_index)] = src[tuple(src_index)]
+    for index in slabs(src.shape, src.dtype.itemsize, limit):
+        target = tuple(slice(o + (i.start or 0), o + (i.stop if i.stop is not None else n)) if isinstance(i, slice)
+                       else o + i for i, o, n in zip(index, offset, src.shape))
+        dst[target] = src[index]

@@ -44,3 +44,15 @@ def test_dry_run_writes_nothing(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "mu=2 x y=31 x x=41 = 2,542 points" in text and "MB" in text and "estimated" in text
     assert not out.exists() and list(tmp_path.iterdir()) == [recipe]
+
+
+def test_slabs_cover_an_array_in_c_order():
+    import numpy as np
+
+    from stressfields.hashing import slabs
+
+    a = np.arange(3 * 4 * 5 * 6, dtype=np.float64).reshape(3, 4, 5, 6)
+    for limit in (8, 48, 100, 480, 10**6):
+        pieces = [a[i] for i in slabs(a.shape, 8, limit)]
+        assert all(p.nbytes <= max(limit, 8) for p in pieces)
+        assert b"".join(p.tobytes() for p in pieces) == a.tobytes()
