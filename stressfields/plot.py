@@ -2,7 +2,8 @@
 
     [plot]
     kind = "line"            # "line": curves along `x`, one per value of `hue`; "map": x-y maps
-    x = "x"                  # the horizontal dimension
+    x = "x"                  # the horizontal dimension, or a variable to plot against
+    marker = "o"             # optional marker (e.g. for the turning points of a history)
     hue = "mu"               # one curve per value (line plots)
     variables = ["sigma_xx", "dpdz"]   # one panel each
     ylim = [-20.0, 20.0]     # optional vertical range of line plots
@@ -10,6 +11,7 @@ Other dimensions are held at their first value.
 """
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import xarray as xr
@@ -30,12 +32,16 @@ def quicklook(path: str | Path, recipe) -> Path:
         kind = spec.get("kind", "map" if {"x", "y"} <= set(recipe.swept) else "line")
         xdim = spec.get("x", recipe.swept[-1] if recipe.swept else None)
         hue = spec.get("hue")
+        marker = spec.get("marker")
         ncol = min(3, max(1, len(names)))
         nrow = -(-len(names) // ncol)
         fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol + 1.0, 3.8 * nrow + 0.4), squeeze=False)
         for ax, name in zip(axes.flat, names):
             da = ds[name]
-            keep = {xdim, hue} if kind == "line" else {"x", "y"}
+            if kind == "line" and xdim in ds.data_vars:
+                # x may be another variable (e.g. force against displacement): plot one against the other
+                da = da.assign_coords({xdim: ds[xdim]})
+            keep = set(ds[xdim].dims) | {hue} if kind == "line" else {"x", "y"}
             da = da.isel({d: 0 for d in da.dims if d not in keep})
             label = _label(da)
             if kind == "map":
@@ -46,14 +52,14 @@ def quicklook(path: str | Path, recipe) -> Path:
                 names_ = ds[f"{hue}_name"].values if f"{hue}_name" in ds else None
                 for i, value in enumerate(da[hue].values):
                     text = names_[i] if names_ is not None else f"{hue} = {value:g}"
-                    da.sel({hue: value}).plot(ax=ax, x=xdim, label=text, lw=1)
+                    da.isel({hue: i}).plot.line(ax=ax, x=xdim, label=text, lw=1, marker=marker)
                 ax.legend(fontsize=7)
                 ax.set_ylabel(label)
             else:
-                da.plot(ax=ax, x=xdim, lw=1)
+                da.plot.line(ax=ax, x=xdim, lw=1, marker=marker)
                 ax.set_ylabel(label)
             ax.set_xlabel(_label(ds[xdim if kind == "line" else "x"]))
-            ax.set_title(da.attrs.get("long_name", name), fontsize=7, wrap=True)
+            ax.set_title(textwrap.fill(da.attrs.get("long_name", name), 60), fontsize=7)
             if "ylim" in spec and kind == "line":
                 ax.set_ylim(*spec["ylim"])
         for ax in list(axes.flat)[len(names):]:

@@ -34,7 +34,7 @@ from .scenarios.base import ARRAY, Parameter, Scenario
 TOP_KEYS = ("scenario", "title", "parameters", "output", "method", "plot")
 OUTPUT_KEYS = ("variables", "chunks")
 METHOD_KEYS = ("method", "rtol")
-PLOT_KEYS = ("x", "variables", "hue", "kind", "ylim")
+PLOT_KEYS = ("x", "variables", "hue", "kind", "ylim", "marker")
 RTOL_RANGE = (1e-14, 1e-2)
 MAX_SWEEP = 100_000_000
 
@@ -156,6 +156,8 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
                 par.required or (par.mode == "physical" and physical)):
             problems.append(f"missing parameter '{par.name}' ({par.meaning}; {par.allowed()}"
                             f"{', in ' + par.units_in(physical) if par.units_in(physical) != '1' else ''})")
+    if scen.complete and not problems:
+        scen.complete(values)
     if scen.check and not problems:
         problems += scen.check(values, physical, method_t.get("method", "auto"))
 
@@ -328,4 +330,6 @@ def _jsonable(value):
                 for v in value.tolist()]
     if isinstance(value, tuple):
         return list(value)
+    if isinstance(value, np.generic):
+        return value.item()
     return value

@@ -71,8 +71,8 @@ class Parameter:
             return None
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             return f"must be {self.allowed()}, got a {type(value).__name__}"
-        if self.kind == INT and not float(value).is_integer():
-            return f"must be {self.allowed()}"
+        if self.kind == INT and (not float(value).is_integer() or abs(value) > 2 ** 31 - 1):
+            return f"must be {self.allowed()} (a 32-bit integer)"
         v = float(value)
         if not math.isfinite(v):
             return f"must be finite ({self.allowed()})"
@@ -137,6 +137,8 @@ class Scenario:
     default_variables: tuple[str, ...] | None = None
     #: extra checks across parameters: check(values, physical, method) -> list of messages
     check: Callable[..., list[str]] | None = None
+    #: defaults that depend on other parameters: complete(values) fills them in place, before `check`
+    complete: Callable[[dict], None] | None = None
 
     def parameter(self, name: str) -> Parameter:
         return {p.name: p for p in self.parameters}[name]
