@@ -1,6 +1,4 @@
 """Adhesive normal contact on the power-law graded half-space (Hess & Popov 2016, eqs. 27-38, Table 3)."""
-import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -9,24 +7,11 @@ from stressfields.physics.graded import adhesive as AD
 from stressfields.physics.graded import material as M
 from stressfields.physics.graded import normal as N
 from stressfields.physics.graded import profiles as P
+from graded_reference import REF, nu_of
 
-REF_PATH = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed001" / "reference_points.json"
 CF = 1e-12
 RTOL = 1e-10
 E0, C0, DG = 2.5, 0.8, 0.05
-
-
-def load_ref():
-    if not REF_PATH.exists():
-        pytest.fail(f"reference points not found at {REF_PATH}")
-    return json.loads(REF_PATH.read_text())
-
-
-REF = load_ref()
-
-
-def nu_of(case):
-    return 1.0 / (2.0 + case["k"]) if case["nu"] == "1/(2+k)" else float(case["nu"])
 
 
 def close(x, ref, tol, scale=None):

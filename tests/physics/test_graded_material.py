@@ -4,30 +4,15 @@ Expected values come from shared/formulas/seed001/reference_points.json (30-digi
 an independent 3D Green's-function ODE), from the k = 0 limits of eq. (4) and from the Holl-ratio
 forms of the formula sheet, never from the code under test.
 """
-import json
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from stressfields.physics.graded import material as M
 from stressfields.physics.graded import profiles as P
+from graded_reference import REF, nu_of
 
-REF_PATH = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed001" / "reference_points.json"
 CF = 1e-12
-
-
-def load_ref():
-    if not REF_PATH.exists():
-        pytest.fail(f"reference points not found at {REF_PATH}")
-    return json.loads(REF_PATH.read_text())
-
-
-def nu_of(case):
-    return 1.0 / (2.0 + case["k"]) if case["nu"] == "1/(2+k)" else float(case["nu"])
-
-
-REF = load_ref()
 
 
 @pytest.mark.parametrize("case", REF["coefficients"], ids=lambda c: f"k{c['k']}-nu{c['nu']}")

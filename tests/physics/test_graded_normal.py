@@ -4,8 +4,6 @@ Closed forms and the quadrature route are each held against the reference points
 values), against each other at the numerically delicate probes of sheet §0.3, and against the
 homogeneous (k = 0) Hertz and Love/Sneddon solutions.
 """
-import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -13,25 +11,12 @@ from scipy.integrate import quad
 
 from stressfields.physics.graded import normal as N
 from stressfields.physics.graded import profiles as P
+from graded_reference import REF, nu_of
 
-REF_PATH = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed001" / "reference_points.json"
 CF = 1e-12          # closed forms
 RTOL = 1e-10        # quadrature route tolerance passed to the *_quad functions
 E0, C0, A = 2.5, 0.8, 0.6
 E_STAR = lambda nu: E0 / (1 - nu ** 2)   # noqa: E731
-
-
-def load_ref():
-    if not REF_PATH.exists():
-        pytest.fail(f"reference points not found at {REF_PATH}")
-    return json.loads(REF_PATH.read_text())
-
-
-REF = load_ref()
-
-
-def nu_of(case):
-    return 1.0 / (2.0 + case["k"]) if case["nu"] == "1/(2+k)" else float(case["nu"])
 
 
 def rel(x, ref):

@@ -1,6 +1,4 @@
 """Partial-slip tangential contact of graded bodies (Hess & Popov 2016, eqs. 39-52)."""
-import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -10,25 +8,12 @@ from stressfields.physics.graded import material as M
 from stressfields.physics.graded import normal as N
 from stressfields.physics.graded import profiles as P
 from stressfields.physics.graded import tangential as T
+from graded_reference import REF, nu_of
 
-REF_PATH = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed001" / "reference_points.json"
 CF = 1e-12
 RTOL = 1e-10
 E0, C0, MU, A = 2.5, 0.8, 0.4, 0.6
 A_N = {"parabolic": 1 / (2 * 1.7), "conical": 0.3, "power_n1.5": 0.9, "power_n3": 0.9}
-
-
-def load_ref():
-    if not REF_PATH.exists():
-        pytest.fail(f"reference points not found at {REF_PATH}")
-    return json.loads(REF_PATH.read_text())
-
-
-REF = load_ref()
-
-
-def nu_of(case):
-    return 1.0 / (2.0 + case["k"]) if case["nu"] == "1/(2+k)" else float(case["nu"])
 
 
 def rel(x, ref):
