@@ -13,7 +13,6 @@ from scipy import integrate, optimize
 
 import stressfields as sf
 from stressfields import cli
-from stressfields.physics import graded as gp
 from stressfields.physics.graded import normal as gno, tangential as gtg
 from stressfields.recipe import RecipeError
 
