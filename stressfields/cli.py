@@ -8,7 +8,7 @@ from pathlib import Path
 from . import __version__
 from .api import describe, scenarios
 from .build import build, estimate
-from .io import OutputError, to_netcdf
+from .io import OutputError, to_netcdf, to_zarr
 from .parts import parts_dir, write_in_parts
 from .recipe import RecipeError, load
 
@@ -42,7 +42,8 @@ def _parser() -> argparse.ArgumentParser:
 
     run = sub.add_parser("run", help="generate the datasets of one or more recipes")
     run.add_argument("recipes", nargs="+", type=Path, help="recipe TOML file(s)")
-    run.add_argument("-o", "--output", type=Path, help="output NetCDF file (one recipe only)")
+    run.add_argument("-o", "--output", type=Path, help="output NetCDF file, or a Zarr store if it ends in "
+                     ".zarr (one recipe only)")
     run.add_argument("-d", "--out-dir", type=Path, default=Path("out"),
                      help="directory for <recipe name>.nc when -o is not given (default: out)")
     run.add_argument("--chunks", default="", help="chunk sizes per dimension, e.g. x=1000,mu=1")
@@ -75,6 +76,12 @@ def _parser() -> argparse.ArgumentParser:
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
     sch.set_defaults(func=_schema)
 
+    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, atomically")
+    exp.add_argument("store", type=Path)
+    exp.add_argument("-o", "--output", type=Path, required=True)
+    exp.add_argument("--overwrite", action="store_true")
+    exp.set_defaults(func=_export)
+
     hsh = sub.add_parser("hash", help="recompute a file's content hash and check it against the stored one")
     hsh.add_argument("files", nargs="+", type=Path)
     hsh.set_defaults(func=_hash)
@@ -89,12 +96,27 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _export(args) -> int:
+    import xarray as xr
+
+    from .hashing import ATTR
+
+    if not args.store.is_dir():
+        raise UsageError(f"{args.store}: no such Zarr store")
+    with xr.open_zarr(args.store, consolidated=True) as ds:
+        ds.attrs.pop(ATTR, None)       # the NetCDF file gets its own content hash
+        for name in ds.variables:      # Zarr's encodings (compressors, chunk keys) mean nothing to NetCDF
+            ds[name].encoding = {}
+        to_netcdf(ds, args.output, overwrite=args.overwrite)
+    return 0
+
+
 def _hash(args) -> int:
     from .hashing import file_hash
 
     bad = 0
     for path in args.files:
-        if not path.is_file():
+        if not path.exists():
             raise UsageError(f"{path}: no such file")
         try:
             digest, stored = file_hash(path)
@@ -154,7 +176,9 @@ def _run(args) -> int:
                 print(f"{path} -> {target}  [{recipe.scenario.name}: {dims}, "
                       f"{len(ds.data_vars)} variables]", file=sys.stderr)
             show = not args.quiet and client is None
-            if args.resume or args.parts or recipe.size > PARTS_ABOVE:
+            if target.suffix == ".zarr":
+                to_zarr(ds, target, overwrite=args.overwrite, progress=show, scheduler=scheduler)
+            elif args.resume or args.parts or recipe.size > PARTS_ABOVE:
                 write_in_parts(ds, target, resume=args.resume, overwrite=args.overwrite, progress=show,
                                scheduler=scheduler)
             else:

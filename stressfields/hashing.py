@@ -36,7 +36,10 @@ def content_hash(ds: xr.Dataset) -> str:
 
 
 def file_hash(path: str | Path) -> tuple[str, str | None]:
-    """(recomputed hash, hash stored in the file or None)."""
+    """(recomputed hash, hash stored in the file or None), for a NetCDF file or a Zarr store."""
+    if Path(path).is_dir():
+        with xr.open_zarr(path, decode_cf=False, mask_and_scale=False, consolidated=True) as ds:
+            return content_hash(ds), ds.attrs.get(ATTR)
     # cache=False: slabs are read one at a time, never the whole variable
     with xr.open_dataset(path, decode_cf=False, mask_and_scale=False, decode_times=False, cache=False) as ds:
         return content_hash(ds), ds.attrs.get(ATTR)
