@@ -32,7 +32,10 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
     parent = target.parent if str(target.parent) else Path(".")
     if not parent.is_dir():
         raise OutputError(f"cannot write {target}: directory {parent} does not exist")
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=parent)
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=parent)
+    except OSError as exc:
+        raise OutputError(f"cannot write {target}: {exc.strerror or exc}") from None
     os.close(fd)
     try:
         delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds), compute=False)
@@ -47,11 +50,24 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
         os.replace(tmp, target)
     except OSError as exc:
         _remove(tmp)
-        raise OutputError(f"cannot write {target}: {exc.strerror or exc}") from exc
+        raise OutputError(f"cannot write {target}: {exc.strerror or exc}{_space(parent)}") from exc
+    except RuntimeError as exc:
+        _remove(tmp)
+        if str(exc).startswith("NetCDF:"):     # the HDF5 layer reports I/O failures this way
+            raise OutputError(f"cannot write {target}: {exc}{_space(parent)}") from exc
+        raise
     except BaseException:
         _remove(tmp)
         raise
     return target
+
+
+def _space(folder: Path) -> str:
+    try:
+        st = os.statvfs(folder)
+    except OSError:
+        return ""
+    return f" ({st.f_bavail * st.f_frsize / 1e6:,.1f} MB free in {folder})"
 
 
 def _encoding(ds: xr.Dataset) -> dict:
