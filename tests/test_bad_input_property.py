@@ -93,3 +93,28 @@ def test_bad_command_lines_exit_2(argv, tmp_path, monkeypatch, capsys):
     assert info.value.code == 2
     assert "Traceback" not in capsys.readouterr().err
     assert os.listdir(tmp_path) == []
+
+
+TOKENS = ["run", "validate", "describe", "hash", "export", "--chunks", "x=0", "x=-3", "mu=1", "=", "x=",
+          "--scheduler", "nowhere", "-o", "--out-dir", "--resume", "--parts", "--overwrite", "--frobnicate",
+          "conical", "nothing", "-q", "--dry-run", "missing.toml", "bad.toml", "out.nc"]
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(argv=st.lists(st.sampled_from(TOKENS), min_size=1, max_size=6))
+def test_random_command_lines_never_trace_back(argv, tmp_path_factory, monkeypatch, capsys):
+    import os
+
+    folder = tmp_path_factory.mktemp("cli")
+    (folder / "bad.toml").write_text('scenario = "conical"\n[parameters]\nnu = 2.0\n')
+    monkeypatch.chdir(folder)
+    try:
+        code = cli.main(argv)
+    except SystemExit as exc:         # argparse's own usage errors
+        code = exc.code
+    err = capsys.readouterr().err
+    assert "Traceback" not in err
+    assert code in (0, 2)
+    if code == 2:
+        assert err.strip()
+        assert sorted(os.listdir(folder)) == ["bad.toml"]
