@@ -54,11 +54,15 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
                 coords[par.name] = xr.Variable((), value, cf.coord_attrs(par, physical))
     options = {"method": recipe.method, "rtol": recipe.rtol, "physical": physical}
 
+    route = scen.route(recipe.values, recipe.method, recipe.rtol) if scen.route else None
     for dims, names in _groups(recipe).items():
         outputs = _evaluate_group(recipe, dims, names, fixed, options, chunking)
         for name, arr in zip(names, outputs):
             var = scen.variable(name)
-            data_vars[name] = xr.DataArray(arr, dims=dims, attrs=cf.variable_attrs(var, physical))
+            attrs = cf.variable_attrs(var, physical)
+            if route and not var.flag_values and var.dtype.startswith("float"):
+                attrs["stressfields_method"], attrs["stressfields_accuracy"] = route
+            data_vars[name] = xr.DataArray(arr, dims=dims, attrs=attrs)
 
     ds = xr.Dataset(data_vars, coords=coords, attrs=cf.global_attrs(recipe))
     for par in scen.parameters:

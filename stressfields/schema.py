@@ -11,7 +11,9 @@ HEADER = """# stressfields data schema
 Generated from the scenario declarations by `stressfields schema > data_schema.md`; a test keeps
 this file in sync. Every dataset is CF-1.8: each variable and coordinate carries `units` (UDUNITS,
 `"1"` for dimensionless) and `long_name`; normalised variables also carry `normalisation`, the
-reference scale they are divided by. Flags carry `flag_values` and `flag_meanings`.
+reference scale they are divided by; every computed field also says how it was computed
+(`stressfields_method`: closed form, quadrature, series) and to what accuracy
+(`stressfields_accuracy`). Flags carry `flag_values` and `flag_meanings`.
 
 Dimensions are the swept parameters, in the order listed per scenario (spatial `x`, `y` last);
 a parameter given as a single value becomes a scalar coordinate; a parameter of choice (e.g.

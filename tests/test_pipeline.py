@@ -176,3 +176,13 @@ def test_cli_distributed_scheduler(tmp_path):
     assert cli.main(["run", str(good), "-o", str(tmp_path / "t.nc"), "-q"]) == 0
     a, b = xr.open_dataset(tmp_path / "d.nc"), xr.open_dataset(tmp_path / "t.nc")
     np.testing.assert_array_equal(a.von_mises.values, b.von_mises.values)
+
+
+def test_method_used_is_recorded_per_variable():
+    closed = sf.generate(CONE)
+    assert closed.sigma_xx.attrs["stressfields_method"] == "closed form"
+    assert "stressfields_method" not in closed.region.attrs
+    quad = sf.generate({"scenario": "axisymmetric", "parameters": {"n": 3.0, "x": [0.5]},
+                        "method": {"rtol": 1e-8}})
+    assert "quadrature" in quad.sigma_xx.attrs["stressfields_method"]
+    assert "1e-08" in quad.sigma_xx.attrs["stressfields_accuracy"]

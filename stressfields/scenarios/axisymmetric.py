@@ -223,6 +223,18 @@ def _check_general(values, physical, method):
     return problems
 
 
+def route(values, method, rtol):
+    """Which route `auto` takes (closed forms where they exist, eq. 1, 3, 14-17, 36-41) and how
+    accurate it is; the quadrature's order comes from a table verified against rtol."""
+    profile = values.get("profile")
+    closed = profile in (None, "flat_punch", "cone", "paraboloid") or (
+        profile == "power_law" and values.get("n") in (1.0, 2.0))
+    if method == "closed" or (method == "auto" and closed):
+        return "closed form", "double-precision rounding (relative error about 1e-14)"
+    return ("one-dimensional Gauss quadrature of the MDR integrals",
+            f"relative error below rtol = {rtol:g} of the mean contact pressure scale")
+
+
 def _scenario(name, summary, geometry, make_profile, check=None):
     params = (NU, MU, UX0, E, DELTA) + geometry + (Y, X)
     case = tuple(p.name for p in params if p.name not in SPATIAL)
@@ -231,7 +243,7 @@ def _scenario(name, summary, geometry, make_profile, check=None):
         variables=_variables(case, tuple(p.name for p in geometry)), evaluate=_evaluate(make_profile), physical_switch="E",
         methods=("auto", "closed", "quadrature"),
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),
-        check=check,
+        check=check, route=route,
     )
 
 

@@ -137,6 +137,8 @@ class Scenario:
     default_variables: tuple[str, ...] | None = None
     #: extra checks across parameters: check(values, physical, method) -> list of messages
     check: Callable[..., list[str]] | None = None
+    #: route(values, method, rtol) -> (the method used, its accuracy), said in every field's attributes
+    route: Callable[[dict, str, float], tuple[str, str]] | None = None
     #: defaults that depend on other parameters: complete(values) fills them in place, before `check`
     complete: Callable[[dict], None] | None = None
 

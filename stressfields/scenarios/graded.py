@@ -232,6 +232,14 @@ def _check_normal(values, physical, method):
     return _check_profile(values, method)
 
 
+def route(values, method, rtol):
+    """Closed forms of the paper for power-law profiles; the MDR quadrature for tabulated ones."""
+    if method == "quadrature" or values.get("profile") == "tabulated":
+        return ("quadrature of the MDR rules (eq. 5, 10-15, 27-31, 41-43)",
+                f"relative error below rtol = {rtol:g}")
+    return "closed form (Tables 1-3)", "double-precision rounding (relative error about 1e-13)"
+
+
 CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
                "into the body; adhesive (tensile) forces negative; shear traction along the tangential force")
 
@@ -240,7 +248,7 @@ GRADED_NORMAL = Scenario(
     summary="Rigid axisymmetric indenter on a power-law graded half-space E = E0 (z/c0)^k: depth, force, "
             "pressure and surface displacement (MDR)",
     references=REFERENCE, parameters=GEOMETRY + MATERIAL + (A_RAD, R_REL), variables=N_VARS,
-    evaluate=_evaluate_normal, methods=METHODS, check=_check_normal, conventions=CONVENTIONS,
+    evaluate=_evaluate_normal, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     default_variables=("depth", "normal_force", "pressure", "uz"),
 )
 
@@ -353,7 +361,7 @@ GRADED_ADHESIVE = Scenario(
     summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
             "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
     references=REFERENCE, parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL), variables=AD_VARS,
-    evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS,
+    evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     default_variables=("depth", "normal_force", "pressure", "critical_radius", "critical_depth", "critical_force"),
 )
 
@@ -542,7 +550,7 @@ GRADED_TANGENTIAL = Scenario(
     references=REFERENCE,
     parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL),
     variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
-    conventions=CONVENTIONS,
+    conventions=CONVENTIONS, route=route,
     default_variables=("stick_radius", "tangential_displacement", "max_tangential_displacement", "normal_force",
                        "shear_traction"),
 )

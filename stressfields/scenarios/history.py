@@ -23,7 +23,7 @@ from ..physics import axisymmetric as ax
 from ..physics.axisymmetric import history as hist
 from ..physics.invariants import principal_stresses, von_mises
 from .axisymmetric import (A, DELTA, E, MU, N, NU, PRINCIPAL, PROFILE_F, PROFILE_R, R, REFERENCE, SPATIAL,
-                           STRESS, THETA, X, Y, _check_general, _contact_radius, _general, _variables)
+                           STRESS, THETA, X, Y, _check_general, _contact_radius, _general, _variables, route)
 from .base import ARRAY, INT, STR, Parameter, Scenario, Variable, nonfinite_flag
 
 HISTORY = Parameter("ux0_history", "tangential rigid-body displacements u_x0 divided by the indentation depth "
@@ -253,7 +253,7 @@ AXISYMMETRIC_HISTORY = Scenario(
                  "half-space along +x for u_x0 > 0, F_x the force on the half-space along +x"),
     methods=("auto", "closed", "quadrature"),
     default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "region") + LOADS,
-    check=_check, complete=_complete,
+    check=_check, complete=_complete, route=route,
 )
 
 SCENARIOS: tuple = (AXISYMMETRIC_HISTORY,)

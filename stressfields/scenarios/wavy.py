@@ -207,5 +207,10 @@ WAVY = Scenario(
     references=REFERENCE, parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
     physical_switch="E", methods=("auto", "series", *APPROXIMATE), check=check,
     conventions="plane strain, frictionless; pressure positive in compression; u_z positive into the body",
+    route=lambda values, method, rtol: (
+        (f"the paper's approximate {method.removeprefix('approximate_')} (inaccurate; for comparison only)",
+         "not controlled: see the exact series") if method in APPROXIMATE else
+        ("Chebyshev series (periodic, eq. 10-12) or Bessel series (non-periodic, eq. 14), length from rtol",
+         f"series error below rtol = {rtol:g}; per case in error_estimate, flagged in converged")),
 )
 SCENARIOS: tuple = (WAVY,)
