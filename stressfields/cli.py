@@ -91,7 +91,7 @@ def _parser() -> argparse.ArgumentParser:
                        help="where the results NetCDF and the PNG chart go (default: docs/bench)")
     bench.add_argument("--quick", action="store_true", help="fewer repeats and smaller cases")
     bench.add_argument("--peers", action="store_true",
-                       help="also time ContactMechanics (pip install 'stressfields[bench]')")
+                       help="also chart ContactMechanics' published Hertz timings and errors")
     bench.set_defaults(func=_bench)
     return p
 
