@@ -91,7 +91,8 @@ def _parser() -> argparse.ArgumentParser:
                        help="where the results NetCDF and the PNG chart go (default: docs/bench)")
     bench.add_argument("--quick", action="store_true", help="fewer repeats and smaller cases")
     bench.add_argument("--peers", action="store_true",
-                       help="also chart ContactMechanics' published Hertz timings and errors")
+                       help="also time ContactMechanics' FFT solver on the Hertz problem "
+                            "(pip install 'stressfields[bench]')")
     bench.set_defaults(func=_bench)
     return p
 

@@ -1,14 +1,47 @@
-"""Smoke test of the benchmark machinery (no timing assertions)."""
+"""Smoke test of the benchmark machinery on a tiny configuration (no timing assertions)."""
+import numpy as np
+import xarray as xr
+
 from stressfields import bench
 
 
-def test_bench_rows_and_dataset():
-    cases = bench._axisymmetric(300, 1)
-    rows = cases["axisymmetric power_law_n3: six surface stresses"]
-    errors = [rows[("quadrature", rtol)][1] for rtol in bench.RTOLS]
-    assert errors[0] > errors[-1]                      # a tighter rtol is more accurate
-    assert all(err <= 10 * rtol for err, rtol in zip(errors, bench.RTOLS))
-    cases.update(bench._peers())
-    ds = bench._dataset(cases)
-    assert ds.time_per_point.dims == ("route", "order", "case")
-    assert "closed form" in ds.route.values and (ds.time_per_point > 0).sum() > 10
+def test_bench_tiny(tmp_path):
+    ds, tp = bench.measure(bench.TINY, peers=False)
+    assert tp == {}                                        # no throughput in the tiny run
+    assert ds.time_per_point.dims == ("method", "order", "case")
+    assert {"closed form", "quadrature", "series", "approximate eq. 18"} <= set(ds.method.values)
+    for key in ("cpu_model", "cores", "numpy_version", "date"):
+        assert ds.attrs[key]
+    assert np.all(ds.time_per_point.fillna(1.0) > 0)
+
+    # the integral route and the series get more accurate as rtol tightens (or stay at rounding:
+    # several routes are exact for polynomial profiles at every order)
+    for name in ("quadrature", "series"):
+        err = ds.max_error.sel({"method": name}).sel(order=list(bench.RTOLS)).dropna("case", how="all")
+        loose, tight = err.sel(order=bench.RTOLS[0]), err.sel(order=bench.RTOLS[-1])
+        assert np.all(tight <= np.maximum(loose, 1e-14)), name
+        assert np.all(loose <= 1e-3) and np.all(tight <= 1e-9)   # sanity, not the contract
+    tab = ds.max_error.sel({"method": "quadrature", "case": "axisymmetric tabulated hyperboloid, partial slip: "
+                                                             "six surface stresses"})
+    assert float(tab.sel(order=1e-4)) > 100 * float(tab.sel(order=1e-12))
+
+    bench.write(ds, tp, tmp_path)
+    with xr.open_dataset(tmp_path / "results.nc") as back:
+        assert back.sizes == ds.sizes and back.attrs["cpu_model"] == ds.attrs["cpu_model"]
+    assert (tmp_path / "accuracy_vs_time.png").stat().st_size > 10_000
+    assert "| case | method |" in (tmp_path / "README.md").read_text()
+
+
+def test_peers_skip_without_contactmechanics(monkeypatch, capsys):
+    import builtins
+
+    real_import = builtins.__import__
+
+    def fake_import(name, *args, **kwargs):
+        if name.startswith("ContactMechanics"):
+            raise ImportError("No module named 'ContactMechanics'")
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", fake_import)
+    assert bench._peer_solver() is None
+    assert "peers skipped" in capsys.readouterr().err
