@@ -104,6 +104,30 @@ def test_westergaard_closed_form_for_one_periodic_harmonic():
     assert float(ds.johnson_parameter.max()) == 0.0     # no ripple on the base wave
 
 
+@pytest.mark.parametrize("method", ["auto", "series"])
+def test_auto_uses_the_single_indenter_for_narrow_periodic_contacts(method):
+    """method auto: where the periodic correction is below rtol the pressure is the non-periodic
+    series (validity 3), still within rtol of Westergaard's periodic closed form; `series` never."""
+    w, rtol = np.array([1e-4, 1e-3, 0.3]), 1e-6
+    params = {"domain": ["periodic", "nonperiodic"], "amplitudes": [0.5], "wavenumbers": [1], "a": list(w),
+              "x": {"start": -1.0, "stop": 1.0, "num": 41}}
+    ds = sf.generate({"scenario": "wavy", "parameters": params, "method": {"method": method, "rtol": rtol},
+                      "output": {"variables": ["pressure", "periodic_correction", "error_estimate"]}}).compute()
+    periodic = ds.sel(domain=0)
+    h = np.pi * w[:, None] / 2
+    exact = 2 * np.cos(h * ds.x.values) * np.sqrt(np.clip(np.sin(h) ** 2 - np.sin(h * ds.x.values) ** 2, 0, None))
+    scale = wv.periodic_correction(w, [0.5], [1], rtol=rtol)[1]["scale"][:, None]
+    assert np.all(np.abs(periodic.pressure.values - exact) <= rtol * scale)
+    substituted = (periodic.validity == 3).all("x").values.tolist()
+    assert substituted == ([True, True, False] if method == "auto" else [False, False, False])
+    assert not (ds.sel(domain=1).validity == 3).any()
+    # the correction is a property of the contact width, the same for both domains, ~0.41-0.44 (2a/lambda)^2
+    np.testing.assert_array_equal(ds.periodic_correction.sel(domain=0), ds.periodic_correction.sel(domain=1))
+    ratio = ds.periodic_correction.sel(domain=0).values / (w ** 2 * scale[:, 0])
+    assert np.all((0.41 < ratio) & (ratio < 0.44))
+    assert ("periodic correction" in ds.pressure.attrs["stressfields_method"]) == (method == "auto")
+
+
 def test_hertz_limit_for_one_nonperiodic_harmonic_in_physical_units():
     """A cosine bump Delta (1 - cos 2 pi x/lambda) is a cylinder of radius R = lambda^2/(4 pi^2 Delta) near
     its crest: Hertz line contact p = (E* a/(2R)) sqrt(1 - x^2/a^2), load W = pi a^2 E*/(4R)."""

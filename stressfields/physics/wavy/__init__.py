@@ -21,6 +21,7 @@ from .api import (
     max_pressure,
     mean_pressure,
     peak_pressure,
+    periodic_correction,
     pressure,
     pressure_shape,
     separation,
@@ -30,5 +31,5 @@ __all__ = [
     "DEFAULT_MAX_TERMS", "DEFAULT_RTOL", "approach", "approximate_pressure_eq18",
     "approximate_pressure_eq20", "contact_validity", "continuous_contact", "displacement",
     "initial_gap", "johnson_parameter", "max_pressure", "mean_pressure", "peak_pressure",
-    "pressure", "pressure_shape", "separation",
+    "periodic_correction", "pressure", "pressure_shape", "separation",
 ]
