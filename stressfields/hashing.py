@@ -19,20 +19,44 @@ ATTR = "stressfields_content_sha256"
 _SKIP_GLOBAL = {"history", ATTR}
 #: values hashed per slice of the first dimension, to keep memory bounded on large files
 _SLICE_BYTES = 64 * 2 ** 20
+#: slabs read for hashing: small enough for reading and hashing to overlap, large enough to stream
+_READ_BYTES = 8 * 2 ** 20
 
 
 def content_hash(ds: xr.Dataset) -> str:
     h = hashlib.sha256()
     attrs = {k: _plain(v) for k, v in sorted(ds.attrs.items()) if k not in _SKIP_GLOBAL}
     h.update(json.dumps(attrs, sort_keys=True).encode())
+    for item in _prefetched(_stream(ds)):
+        h.update(item)
+    return h.hexdigest()
+
+
+def _stream(ds: xr.Dataset):
+    """What is hashed, in order: per variable (by name) a JSON head, then a reader per value slab."""
     for name in sorted(map(str, ds.variables)):
         var = ds.variables[name]
         head = {"name": name, "dims": list(var.dims), "dtype": str(var.dtype), "shape": list(var.shape),
                 "attrs": {k: _plain(v) for k, v in sorted(var.attrs.items())}}
-        h.update(json.dumps(head, sort_keys=True).encode())
-        for block in _blocks(var):
-            h.update(_bytes(block))
-    return h.hexdigest()
+        yield lambda head=head: json.dumps(head, sort_keys=True).encode()
+        for index in slabs(var.shape, var.dtype.itemsize, _READ_BYTES):
+            yield lambda var=var, index=index: _bytes(np.asarray(var[index].values))
+
+
+def _prefetched(readers):
+    """Call the readers one ahead in a second thread: the next slab is read while this one is
+    hashed (file reads and SHA-256 both release the GIL, so a file costs ~max of the two, not the sum)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        pending = None
+        for reader in readers:
+            nxt = pool.submit(reader)
+            if pending is not None:
+                yield pending.result()
+            pending = nxt
+        if pending is not None:
+            yield pending.result()
 
 
 def file_hash(path: str | Path) -> tuple[str, str | None]:
@@ -68,11 +92,6 @@ def slabs(shape: tuple[int, ...], itemsize: int, limit: int = _SLICE_BYTES):
     for outer in np.ndindex(*shape[:k]):
         for start in range(0, shape[k], step):
             yield outer + (slice(start, min(shape[k], start + step)),)
-
-
-def _blocks(var: xr.Variable):
-    for index in slabs(var.shape, var.dtype.itemsize):
-        yield np.asarray(var[index].values)
 
 
 def _bytes(values: np.ndarray) -> bytes:

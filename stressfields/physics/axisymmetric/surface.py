@@ -43,7 +43,12 @@ from .integrals import log_integral, tau_integrals, theta_moments
 __all__ = ["surface_stress", "surface_dpdz", "stick_radius", "mean_pressure"]
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
+#: points per block. The quadrature route's (nodes x points) arrays stay in cache at 4096; the
+#: closed forms make many short NumPy calls per block, whose interpreter overhead serialises
+#: threaded dask workers at 4096 (a 4e6-point recipe -> NetCDF run: 1.8 s at 4096, 1.15 s at
+#: 16384) while one thread is fastest at 16384 (0.24 s per 1e6 points against 0.40 s at 65536)
 _CHUNK = 4096
+_CLOSED_CHUNK = 16384
 
 
 # -- argument handling --------------------------------------------------------------------------
@@ -295,9 +300,10 @@ def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method
     shape, (x, y, a, c, nu, mu) = _prepare(x, y, a, c, nu, mu, profile)
     n = x.size
     out = {k: np.empty(n) for k in comps}
+    step = _CHUNK if closed is None else _CLOSED_CHUNK
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for s in range(0, n, _CHUNK):
-            sl = slice(s, s + _CHUNK)
+        for s in range(0, n, step):
+            sl = slice(s, s + step)
             part = _stress_chunk(profile, closed, ords, comps, x[sl], y[sl], a[sl], c[sl], nu[sl], mu[sl])
             for k in comps:
                 out[k][sl] = part[k]
@@ -358,9 +364,10 @@ def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10):
     shape, (x, y, a, c, nu, mu) = _prepare(x, y, a, c, nu, mu, profile)
     n = x.size
     out = np.full(n, np.nan)
+    step = _CHUNK if closed is None else _CLOSED_CHUNK
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        for s in range(0, n, _CHUNK):
-            sl = slice(s, s + _CHUNK)
+        for s in range(0, n, step):
+            sl = slice(s, s + step)
             xs, ys = x[sl], y[sl]
             r = np.hypot(xs, ys)
             part = np.full(xs.size, np.nan)
