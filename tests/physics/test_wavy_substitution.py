@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from stressfields.physics import wavy
+from stressfields.physics.wavy import api
 
 F1 = {"amplitudes": [1.0], "wavenumbers": [1]}
 F3 = {"amplitudes": [0.5, 0.01, 0.00075], "wavenumbers": [1, 11, 40]}
@@ -46,8 +47,14 @@ def test_correction_grows_as_the_square_of_the_contact_width():
     np.testing.assert_allclose(bound / (WIDTHS[:5] ** 2 * info["scale"]), 0.411, rtol=0.01)
 
 
+@pytest.fixture
+def any_size(monkeypatch):
+    """Substitute on every contact, however few points (the default needs 1e5 to pay off)."""
+    monkeypatch.setattr(api, "SUBSTITUTE_MIN_POINTS", 0)
+
+
 @pytest.mark.parametrize("rtol", [1e-4, 1e-6, 1e-8, 1e-12])
-def test_substituted_pressure_meets_the_periodic_tolerance(rtol):
+def test_substituted_pressure_meets_the_periodic_tolerance(rtol, any_size):
     p, info = wavy.pressure(X[:, None], WIDTHS[None, :], **F1, periodic=True, rtol=rtol, substitute=True)
     _, exact_info = wavy.pressure(0.0, WIDTHS, **F1, periodic=True, rtol=rtol)
     scale = wavy.periodic_correction(WIDTHS, **F1, rtol=rtol)[1]["scale"]
@@ -64,7 +71,7 @@ def test_substituted_pressure_meets_the_periodic_tolerance(rtol):
     assert np.all(exact_info["converged"])
 
 
-def test_substituted_pressure_is_the_single_indenters():
+def test_substituted_pressure_is_the_single_indenters(any_size):
     p, info = wavy.pressure(X, 1e-3, **F3, periodic=True, rtol=1e-6, substitute=True)
     assert info["substituted"].all()
     np.testing.assert_array_equal(p, wavy.pressure(X, 1e-3, **F3, periodic=False, rtol=1e-6)[0])
@@ -75,3 +82,16 @@ def test_no_substitution_unless_asked_or_for_a_single_indenter():
     assert "substituted" not in info
     p, info = wavy.pressure(X, 1e-4, **F1, periodic=False, rtol=1e-4, substitute=True)
     assert "substituted" not in info
+
+
+def test_substitution_only_where_it_pays():
+    """The test costs ~2 ms per contact: fewer points than SUBSTITUTE_MIN_POINTS keep the periodic series."""
+    few = np.linspace(-1.0, 1.0, api.SUBSTITUTE_MIN_POINTS - 1)
+    many = np.linspace(-1.0, 1.0, api.SUBSTITUTE_MIN_POINTS)
+    assert not wavy.pressure(few, 1e-4, **F1, periodic=True, rtol=1e-6, substitute=True)[1]["substituted"].any()
+    p, info = wavy.pressure(many, 1e-4, **F1, periodic=True, rtol=1e-6, substitute=True)
+    assert info["substituted"].all()
+    assert np.max(np.abs(p - westergaard(many, 1e-4))) <= info["error_estimate"][0]
+    # counted per contact: outside points do not count
+    wide = np.concatenate([few, np.linspace(1.5, 2.0, api.SUBSTITUTE_MIN_POINTS)])
+    assert not wavy.pressure(wide, 1e-4, **F1, periodic=True, rtol=1e-6, substitute=True)[1]["substituted"].any()
