@@ -47,6 +47,7 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
         stamp(tmp)
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
+        os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
         os.replace(tmp, target)
     except OSError as exc:
         _remove(tmp)
@@ -60,6 +61,17 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
         _remove(tmp)
         raise
     return target
+
+
+def _umask() -> int:
+    try:
+        with open("/proc/self/status") as fh:      # read without changing it (os.umask sets it)
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError):
+        pass
+    return 0o022
 
 
 def _space(folder: Path) -> str:

@@ -62,6 +62,16 @@ def test_atomic_write_and_refusal(tmp_path):
     assert back.attrs["stressfields_recipe_sha256"] == ds.attrs["stressfields_recipe_sha256"]
 
 
+def test_written_file_has_the_usual_permissions(tmp_path):
+    """The temporary file is private while written; the published one follows the umask."""
+    old = os.umask(0o027)
+    try:
+        sf.to_netcdf(sf.generate(CONE), tmp_path / "cone.nc")
+    finally:
+        os.umask(old)
+    assert (tmp_path / "cone.nc").stat().st_mode & 0o777 == 0o640
+
+
 def test_failure_mid_write_leaves_nothing(tmp_path, monkeypatch):
     ds = sf.generate(CONE)
     ds["boom"] = ds.sigma_xx.copy(data=ds.sigma_xx.data.map_blocks(_explode, dtype=float))
