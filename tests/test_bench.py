@@ -1,5 +1,6 @@
 """Smoke test of the benchmark machinery on a tiny configuration (no timing assertions)."""
 import numpy as np
+import pytest
 import xarray as xr
 
 from stressfields import bench
@@ -45,3 +46,17 @@ def test_peers_skip_without_contactmechanics(monkeypatch, capsys):
     monkeypatch.setattr(builtins, "__import__", fake_import)
     assert bench._peer_solver() is None
     assert "peers skipped" in capsys.readouterr().err
+
+
+def test_peer_solves_both_problems_and_converges_to_our_closed_forms():
+    """ContactMechanics (optional `bench` extra) against our exact pressures: the grid error falls
+    about linearly with the spacing, for Hertz and for the cone."""
+    pytest.importorskip("ContactMechanics")
+    solve = bench._peer_solver()
+    for problem in bench.PEER_PROBLEMS:
+        errors = []
+        for n in (64, 128):
+            _, p, exact = solve(n, problem)
+            ok = np.isfinite(exact)
+            errors.append(np.linalg.norm((p - exact)[ok]) / np.linalg.norm(exact[ok]))
+        assert errors[1] < 0.6 * errors[0] and errors[1] < 0.005, (problem, errors)
