@@ -9,8 +9,9 @@ Willert, Forsbach & Popov, eqs. (9), (11), (24)-(26), with the substitutions of 
 * ``u = r sin t`` for integrals over u in [0, min(r, a)] with the kernel 1/sqrt(r^2 - u^2).
 * Tabulated (spline) profiles: the Abel transform of a cubic spline has cusps at the knots (g'' ~
   sqrt(u - k) just right of a knot k, from the jumps of the spline's third derivative).  Their rules
-  break at every knot and grade the nodes towards it (``segment_rule``), which restores fast
-  convergence.
+  break at every knot and grade the nodes towards it (``segment_rule``), and split a segment
+  geometrically where a cusp lies just outside it (a knot just below r or c: see ``_knot_groups``),
+  which restores fast convergence.
 * Power-law profiles g' = B u^m (m = n - 1 possibly non-integer) behave like t^m at t = 0 after the
   sin substitution; there Gauss–Jacobi rules with that weight make the rest of the integrand smooth,
   and the pressure-gradient integral (11) is taken as the Hadamard finite part (valid for n < 1,
@@ -36,11 +37,11 @@ def _is_power_law(profile) -> bool:
 
 
 def _knots(profile):
-    """Interior spline knots (where g' and g'' have cusps), or None."""
+    """All spline knots 0 = k_0 < k_1 < ... of a tabulated profile (g' and g'' have cusps at the
+    interior ones), or None."""
     if profile.kind != "tabulated":
         return None
-    kn = profile._knots[1:-1]
-    return kn if kn.size else None
+    return profile._knots if profile._knots.size > 2 else None
 
 
 def _panel_length(profile, ords: Orders) -> float:
@@ -54,39 +55,141 @@ def _panel_length(profile, ords: Orders) -> float:
 _GROWTH = 4.0
 
 
-def _seg_order(n: int) -> int:
-    """Nodes per knot-to-knot segment: segments are short, so fewer nodes than a full panel."""
-    return n
+# -- rules for tabulated (spline) profiles -------------------------------------------------------
+#
+# On the spline piece [k_j, k_j+1], g' and g'' are analytic functions with branch points at every
+# knot k_i <= k_j (the sqrt(u - k_i) cusps) and nowhere to the right.  A segment rule graded at
+# its left end (``segment_rule``) handles the cusp sitting on that end; a branch point a distance d
+# *outside* the segment's left end (a knot just below r, c or a panel break; for u = r cosh t also
+# the mirror image -t_k of a knot just above r, cosh t being even, and a knot k < r at
+# t = +-i arccos(k/r)) is invisible to the rule and costs it its order: the pressure gradient, whose
+# g'' has the stronger cusp, lost up to 2e-10 at rtol 1e-12 with a knot 1e-4 below r.  Such a
+# segment is split geometrically at start + _RATIO d 2^j, so that no piece is longer than about
+# twice its distance to the branch point: log2(length / d) extra pieces, only where a cusp is near.
+
+_OWN = 1e-12        # a cusp nearer than this (relative to the segment) to its start is the start's own
+_RATIO = 2.0        # split a segment longer than _RATIO times its distance to a cusp
+_MAX_SPLITS = 48    # geometric splits per segment at most
 
 
-def _with_breaks(lo, hi, breaks, n):
-    """Graded segment rule on [lo, hi] split at ``breaks`` (shape (k, m), clipped into [lo, hi])."""
-    inner = np.sort(np.clip(breaks, lo[:, None], hi[:, None]), axis=1)
-    return segment_rule(np.concatenate([lo[:, None], inner, hi[:, None]], axis=1), n)
+def _u_of(mode, r, s):
+    """u at the rule variable s: u = r cosh s, r sin s, e^s or s."""
+    if mode == "cosh":
+        return r * np.cosh(s)
+    if mode == "sin":
+        return r * np.sin(s)
+    if mode == "exp":
+        return np.exp(s)
+    return s
 
 
-def _tau_rule(profile, r, lo, hi, panels, n):
-    """Nodes/weights in t (u = r cosh t) on [lo, hi]: equal panels, plus breaks at the knots of a
-    tabulated profile."""
+def _s_of(mode, r, k):
+    """Rule variable of the knots k (inside the range of the rule)."""
+    if mode == "cosh":
+        return arccosh_ratio(np.maximum(k, r), r)
+    if mode == "sin":
+        return np.arctan2(k, sqrt_diff(r, np.minimum(k, r)))
+    if mode == "exp":
+        with np.errstate(divide="ignore"):
+            return np.log(k)
+    return k
+
+
+def _cusp_distance(mode, r, s, k):
+    """Distance in the rule variable from s to the branch point of the knot k <= u(s).  For
+    u = r cosh t a knot k < r lies at t = +-i arccos(k/r)."""
+    if mode == "cosh":
+        theta = np.arctan2(sqrt_diff(r, np.minimum(k, r)), k)
+        return np.where(k < r, np.hypot(s, theta), np.abs(s - _s_of(mode, r, k)))
+    return np.abs(s - _s_of(mode, r, k))
+
+
+def _knot_groups(mode, kn, r, lo, hi, panels, n):
+    """Graded composite rules on [lo, hi] (rule variable s, u = u(s)) for a spline with knots
+    ``kn``: breaks at the knots inside, at ``panels`` equal panels, and geometric splits towards
+    near branch points (see above).  Yields (index array, nodes, weights) per group of points that
+    need the same number of segments."""
+    P = r.size
+    K = kn.size - 1                              # pieces
+    rr = r[:, None]
+    u_lo, u_hi = _u_of(mode, r, lo), _u_of(mode, r, hi)
+    i0 = np.searchsorted(kn, u_lo, side="right")
+    i1 = np.searchsorted(kn, u_hi, side="left")
+    m = int(np.max(i1 - i0, initial=0))
+    parts = [lo[:, None], hi[:, None]]
+    if m > 0:
+        cols = i0[:, None] + np.arange(m)[None, :]
+        kk = kn[np.minimum(cols, K)]
+        parts.append(np.where(cols < i1[:, None],
+                              np.clip(_s_of(mode, rr, kk), lo[:, None], hi[:, None]), np.inf))
+    if panels > 1:
+        frac = np.arange(1, panels) / panels
+        parts.append(lo[:, None] + (hi - lo)[:, None] * frac[None, :])
+    B = _dedup(np.sort(np.concatenate(parts, axis=1), axis=1))
+    S, E = B[:, :-1], B[:, 1:]
+    seg = np.isfinite(E)
+    with np.errstate(invalid="ignore"):
+        length = np.where(seg, E - S, 0.0)
+        mid = np.where(seg, 0.5 * (S + E), lo[:, None])
+    j = np.clip(np.searchsorted(kn, _u_of(mode, rr, mid), side="right") - 1, 0, K - 1)
+    d = np.full(S.shape, np.inf)
+    own = _OWN * length
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for c in (j, j - 1):                    # the piece's lower knot and the one before
+            dist = _cusp_distance(mode, rr, S, kn[np.maximum(c, 0)])
+            d = np.where((c >= 1) & (dist > own), np.minimum(d, dist), d)
+        if mode == "cosh":                      # the fold of u = r cosh t at t = 0
+            d = np.where((kn[j] >= rr) & (j >= 1) & (S > own), np.minimum(d, S), d)
+        elif mode in ("sin", "lin"):            # the 1/u terms of g' beyond the first piece
+            d = np.where((j >= 1) & (S > own), np.minimum(d, S), d)
+        d = d * _RATIO
+        near = seg & (d < length)
+        J = np.where(near, np.minimum(np.ceil(np.log2(np.where(near, length / d, 1.0))), _MAX_SPLITS),
+                     0).astype(np.int64)
+    if np.any(J):
+        pi, si = np.nonzero(J)
+        Jp = J[pi, si]
+        tot = int(Jp.sum())
+        rows = np.repeat(pi, Jp)
+        jj = np.arange(tot) - np.repeat(np.cumsum(Jp) - Jp, Jp)
+        vals = np.repeat(S[pi, si], Jp) + np.repeat(d[pi, si], Jp) * 2.0 ** jj
+        col = np.arange(tot) - np.searchsorted(rows, rows, side="left")
+        X = np.full((P, int(col.max()) + 1), np.inf)
+        X[rows, col] = vals
+        B = _dedup(np.sort(np.concatenate([B, X], axis=1), axis=1))
+    count = np.isfinite(B).sum(axis=1)
+    for cnt, idx in group_by(count):
+        t, w = segment_rule(B[idx, :int(cnt)], n)
+        yield idx, t, w
+
+
+def _dedup(B):
+    """Sorted break rows with repeated values replaced by +inf and moved to the end."""
+    rep = np.zeros(B.shape, dtype=bool)
+    rep[:, 1:] = B[:, 1:] == B[:, :-1]
+    if not np.any(rep):
+        return B
+    return np.sort(np.where(rep, np.inf, B), axis=1)
+
+
+def _tau_groups(profile, r, lo, hi, panels, n):
+    """(index, nodes, weights) in t (u = r cosh t) on [lo, hi]: equal panels, plus for a tabulated
+    profile breaks at its knots and splits towards near cusps."""
     kn = _knots(profile)
     if kn is None:
-        return panel_rule(lo, hi, panels, n)
-    frac = np.arange(1, panels) / panels
-    uniform = lo[:, None] + (hi - lo)[:, None] * frac[None, :]
-    kk, rr = kn[None, :], r[:, None]
-    tk = np.where(kk > rr, arccosh_ratio(np.maximum(kk, rr), rr), -np.inf)
-    return _with_breaks(lo, hi, np.concatenate([uniform, tk], axis=1), _seg_order(n))
+        yield (np.arange(r.size),) + panel_rule(lo, hi, panels, n)
+    else:
+        yield from _knot_groups("cosh", kn, r, lo, hi, panels, n)
 
 
-def _theta_rule(profile, r, lo, hi, n):
-    """Nodes/weights in t (u = r sin t) on [lo, hi] within [0, pi/2]; breaks at the knots of a
-    tabulated profile."""
+def _theta_groups(profile, r, lo, hi, n):
+    """(index, nodes, weights) in t (u = r sin t) on [lo, hi] within [0, pi/2]; for a tabulated
+    profile breaks at its knots and splits towards near cusps."""
     kn = _knots(profile)
     if kn is None:
-        return panel_rule(lo, hi, 1, n)
-    kk, rr = kn[None, :], r[:, None]
-    tk = np.where(kk < rr, np.arctan2(kk, sqrt_diff(rr, np.minimum(kk, rr))), np.inf)
-    return _with_breaks(lo, hi, tk, _seg_order(n))
+        yield (np.arange(r.size),) + panel_rule(lo, hi, 1, n)
+    else:
+        yield from _knot_groups("sin", kn, r, lo, hi, 1, n)
 
 
 def tau_integrals(profile, r, lo, hi, ords: Orders, kinds):
@@ -99,21 +202,22 @@ def tau_integrals(profile, r, lo, hi, ords: Orders, kinds):
     if r.size == 0:
         return out
     counts = panel_count(lo, hi, _panel_length(profile, ords))
-    for panels, idx in group_by(counts):
-        t, w = _tau_rule(profile, r[idx], lo[idx], hi[idx], int(panels), ords.n_tau)
-        e = np.exp(t)
-        ei = 1.0 / e
-        rr = r[idx, None]
-        u = rr * (0.5 * (e + ei))
-        if "G" in kinds or "GE" in kinds:
-            wg = w * profile.dg(u)
-            if "G" in kinds:
-                out["G"][idx] = wg.sum(axis=1)
-            if "GE" in kinds:
-                out["GE"][idx] = (wg * (ei * ei)).sum(axis=1)
-        if "H" in kinds:
-            # u + s = r e^t exactly
-            out["H"][idx] = (w * profile.d2g(u) * ei).sum(axis=1) / r[idx]
+    for panels, group in group_by(counts):
+        for sub, t, w in _tau_groups(profile, r[group], lo[group], hi[group], int(panels), ords.n_tau):
+            idx = group[sub]
+            e = np.exp(t)
+            ei = 1.0 / e
+            rr = r[idx, None]
+            u = rr * (0.5 * (e + ei))
+            if "G" in kinds or "GE" in kinds:
+                wg = w * profile.dg(u)
+                if "G" in kinds:
+                    out["G"][idx] = wg.sum(axis=1)
+                if "GE" in kinds:
+                    out["GE"][idx] = (wg * (ei * ei)).sum(axis=1)
+            if "H" in kinds:
+                # u + s = r e^t exactly
+                out["H"][idx] = (w * profile.d2g(u) * ei).sum(axis=1) / r[idx]
     return out
 
 
@@ -145,10 +249,12 @@ def theta_moments(profile, r, th_lo, th_hi, ords: Orders):
             p0[idx] -= q0
             p2[idx] -= q2
         return scale * p0, scale * p2
-    t, w = _theta_rule(profile, r, th_lo, th_hi, ords.n_theta)
-    st = np.sin(t)
-    wg = w * st * profile.dg(r[:, None] * st)
-    return wg.sum(axis=1), (wg * st * st).sum(axis=1)
+    p0, p2 = np.zeros(r.size), np.zeros(r.size)
+    for idx, t, w in _theta_groups(profile, r, th_lo, th_hi, ords.n_theta):
+        st = np.sin(t)
+        wg = w * st * profile.dg(r[idx, None] * st)
+        p0[idx], p2[idx] = wg.sum(axis=1), (wg * st * st).sum(axis=1)
+    return p0, p2
 
 
 def pressure_gradient_D(profile, r, th_h, ords: Orders):
@@ -171,8 +277,9 @@ def pressure_gradient_D(profile, r, th_h, ords: Orders):
         z = (m - 1.0) * ls
         phi = (m - 1.0) * ratio * (np.expm1(z) / z)   # ((sin t/t)^(m-1) - 1) / t^2; z < 0 here
         return B * r ** (m - 1.0) * (th_h ** m + m * th_h ** (m + 2.0) * (weights * phi).sum(axis=1))
-    t, w = _theta_rule(profile, r, np.zeros_like(th_h), th_h, ords.n_theta)
-    integral = (w * profile.d2g(r[:, None] * np.sin(t))).sum(axis=1)
+    integral = np.zeros(r.size)
+    for idx, t, w in _theta_groups(profile, r, np.zeros_like(th_h), th_h, ords.n_theta):
+        integral[idx] = (w * profile.d2g(r[idx, None] * np.sin(t))).sum(axis=1)
     g0 = float(profile.dg(0.0))
     return integral + (g0 / r if g0 != 0.0 else 0.0)
 
@@ -190,9 +297,11 @@ def pressure_gradient_far(profile, r, th_h, ords: Orders):
         th = th_h[:, None] * nodes[None, :]
         c = np.cos(th)
         return B * r ** m * th_h ** (p + 1.0) * (weights * (np.sin(th) / th) ** p / (c * c)).sum(axis=1)
-    t, w = _theta_rule(profile, r, np.zeros_like(th_h), th_h, ords.n_theta)
-    st, ct = np.sin(t), np.cos(t)
-    return (w * st * profile.dg(r[:, None] * st) / (ct * ct)).sum(axis=1)
+    out = np.zeros(r.size)
+    for idx, t, w in _theta_groups(profile, r, np.zeros_like(th_h), th_h, ords.n_theta):
+        st, ct = np.sin(t), np.cos(t)
+        out[idx] = (w * st * profile.dg(r[idx, None] * st) / (ct * ct)).sum(axis=1)
+    return out
 
 
 def log_integral(profile, lo, hi, ords: Orders):
@@ -212,16 +321,14 @@ def log_integral(profile, lo, hi, ords: Orders):
         vlo, vhi = np.log(lo[pos]), np.log(hi[pos])
         vals = np.zeros(vlo.size)
         counts = panel_count(vlo, vhi, _panel_length(profile, ords))
-        for panels, idx in group_by(counts):
+        for panels, group in group_by(counts):
             if kn is None:
-                v, w = panel_rule(vlo[idx], vhi[idx], int(panels), ords.n_tau)
-            else:
-                frac = np.arange(1, panels) / panels
-                uniform = vlo[idx, None] + (vhi - vlo)[idx, None] * frac[None, :]
-                logk = np.broadcast_to(np.log(kn)[None, :], (idx.size, kn.size))
-                v, w = _with_breaks(vlo[idx], vhi[idx], np.concatenate([uniform, logk], axis=1),
-                                    _seg_order(ords.n_tau))
-            vals[idx] = (w * profile.dg(np.exp(v))).sum(axis=1)
+                v, w = panel_rule(vlo[group], vhi[group], int(panels), ords.n_tau)
+                vals[group] = (w * profile.dg(np.exp(v))).sum(axis=1)
+                continue
+            ones = np.ones(group.size)
+            for sub, v, w in _knot_groups("exp", kn, ones, vlo[group], vhi[group], int(panels), ords.n_tau):
+                vals[group[sub]] = (w * profile.dg(np.exp(v))).sum(axis=1)
         out[pos] = vals
     if np.any(zero):
         if m <= 0.0:
@@ -231,12 +338,12 @@ def log_integral(profile, lo, hi, ords: Orders):
         else:
             # g'(u)/u is bounded at 0 for a smooth tip
             h = hi[zero]
-            if kn is None:
-                v, w = panel_rule(np.zeros_like(h), h, 4, ords.n_theta)
-            else:
-                v, w = _with_breaks(np.zeros_like(h), h, np.broadcast_to(kn[None, :], (h.size, kn.size)),
-                                    _seg_order(ords.n_theta))
-            with np.errstate(invalid="ignore", divide="ignore"):
-                vals = np.where(w > 0.0, w * profile.dg(v) / np.where(v > 0.0, v, 1.0), 0.0)
-            out[zero] = vals.sum(axis=1)
+            z = np.zeros_like(h)
+            groups = ([(np.arange(h.size),) + panel_rule(z, h, 4, ords.n_theta)] if kn is None else
+                      _knot_groups("lin", kn, np.ones(h.size), z, h, 1, ords.n_theta))
+            vals = np.zeros(h.size)
+            for idx, v, w in groups:
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    vals[idx] = np.where(w > 0.0, w * profile.dg(v) / np.where(v > 0.0, v, 1.0), 0.0).sum(axis=1)
+            out[zero] = vals
     return out
