@@ -253,8 +253,8 @@ def _peer_solver():
         return None
 
     def solve(n: int, problem: str = HERTZ, side: float = 3.0):
-        """Free (non-periodic) boundaries on a square of side 3a, nodes on the axis (as in
-        shared/notes/peers.md section 3.1), E* = a = 1. Returns (seconds, p, p_exact)."""
+        """Free (non-periodic) boundaries on a square of side 3a, nodes on the axis (the peer's own
+        documented set-up for an isolated indenter), E* = a = 1. Returns (seconds, p, p_exact)."""
         _kind, height, force, exact, _pm = PEER_PROBLEMS[problem]
         dx = side / n
         xs = (np.arange(n) - n // 2) * dx

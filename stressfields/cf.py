@@ -25,7 +25,7 @@ def global_attrs(recipe) -> dict[str, str]:
                   f"rtol {recipe.rtol:g}",
         "history": f"{stamp} stressfields {__version__} generate (scenario {scen.name}, "
                    f"recipe sha256 {recipe.sha256[:16]}) on Python {platform.python_version()}",
-        "references": scen.references,
+        "references": scen.full_references,
         "comment": f"{scen.summary}. Values in {mode}. Signs: {scen.conventions}. See data_schema.md "
                    "of stressfields for every variable.",
         "stressfields_version": __version__,

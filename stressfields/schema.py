@@ -36,7 +36,7 @@ def document() -> str:
 
 def scenario_text(scen: Scenario, level: int = 1) -> str:
     h = "#" * level
-    lines = [f"{h} `{scen.name}`", "", scen.summary + ".", "", f"Reference: {scen.references}.", ""]
+    lines = [f"{h} `{scen.name}`", "", scen.summary + ".", "", f"References: {scen.full_references}.", ""]
     lines += [f"Signs: {scen.conventions}.", ""]
     if scen.physical_switch:
         lines += [f"Units: normalised by default; giving `{scen.physical_switch}` switches to physical "

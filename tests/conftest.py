@@ -1,15 +1,10 @@
 import json
 from pathlib import Path
 
-import pytest
-
-ROOT = Path(__file__).resolve().parents[1]
-SHARED = ROOT.parent / "shared"
+DATA = Path(__file__).resolve().parent / "data"
 
 
-def load_reference(seed: str) -> dict:
-    """Reference points of the verified formula sheet ``seed`` (e.g. "seed000")."""
-    path = SHARED / "formulas" / seed / "reference_points.json"
-    if not path.exists():
-        pytest.fail(f"reference points not found at {path}: shared/ must sit beside the project")
-    return json.loads(path.read_text())
+def load_reference(name: str) -> dict:
+    """Reference values of tests/data/<name>.json (provenance in tests/data/README.md):
+    "axisymmetric_surface", "graded_power_law" or "wavy_tsukanov"."""
+    return json.loads((DATA / f"{name}.json").read_text())

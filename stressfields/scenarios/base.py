@@ -121,6 +121,7 @@ class Scenario:
 
     name: str
     summary: str
+    #: the papers (with DOI where known); files cite them with the theory page below
     references: str
     parameters: tuple[Parameter, ...]
     variables: tuple[Variable, ...]
@@ -141,6 +142,16 @@ class Scenario:
     route: Callable[[dict, str, float], tuple[str, str]] | None = None
     #: defaults that depend on other parameters: complete(values) fills them in place, before `check`
     complete: Callable[[dict], None] | None = None
+    #: the page of docs/theory/ that gives the equations the scenario implements
+    theory: str = ""
+
+    @property
+    def full_references(self) -> str:
+        """The papers and the theory page, as written in every file's ``references``."""
+        if not self.theory:
+            return self.references
+        return (f"{self.references}. Equations as implemented, with conventions and errata: "
+                f"stressfields documentation, docs/theory/{self.theory}.md")
 
     def parameter(self, name: str) -> Parameter:
         return {p.name: p for p in self.parameters}[name]
