@@ -60,7 +60,7 @@ def test_normal_matches_physics_and_hertz_limit():
 
 
 def test_normal_reference_points_closed_and_quadrature():
-    ref = load_reference("seed001")
+    ref = load_reference("graded_power_law")
     inputs = ref["meta"]["inputs"]
     shapes = {"parabolic": {"R": float(inputs["R"])}, "conical": {"profile": "conical",
               "tan_theta": float(inputs["tan_theta"])}, "power_n3": {"profile": "power_law", "n": 3.0, "A": 0.9}}

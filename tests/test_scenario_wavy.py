@@ -71,7 +71,7 @@ def test_reference_points_of_the_formula_sheet(both):
     """Independent Nystroem solutions (sheet section 10) for f1-f3, both domains, 2a/lambda_1 = 0.05, 0.2, 0.5."""
     profiles = {"f1": 1, "f2": 2, "f3": 3}
     checked = 0
-    for case in load_reference("seed002")["cases"]:
+    for case in load_reference("wavy_tsukanov")["cases"]:
         if case["two_a_over_lambda1"] not in both.a.values:
             continue
         ds = both.sel(domain=0 if case["problem"] == "periodic" else 1, n_harmonics=profiles[case["profile"]],

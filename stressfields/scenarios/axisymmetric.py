@@ -239,7 +239,7 @@ def _scenario(name, summary, geometry, make_profile, check=None):
     params = (NU, MU, UX0, E, DELTA) + geometry + (Y, X)
     case = tuple(p.name for p in params if p.name not in SPATIAL)
     return Scenario(
-        name=name, summary=summary, references=REFERENCE, parameters=params,
+        name=name, summary=summary, references=REFERENCE, theory="axisymmetric", parameters=params,
         variables=_variables(case, tuple(p.name for p in geometry)), evaluate=_evaluate(make_profile), physical_switch="E",
         methods=("auto", "closed", "quadrature"),
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),

@@ -247,7 +247,7 @@ GRADED_NORMAL = Scenario(
     name="graded_normal",
     summary="Rigid axisymmetric indenter on a power-law graded half-space E = E0 (z/c0)^k: depth, force, "
             "pressure and surface displacement (MDR)",
-    references=REFERENCE, parameters=GEOMETRY + MATERIAL + (A_RAD, R_REL), variables=N_VARS,
+    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (A_RAD, R_REL), variables=N_VARS,
     evaluate=_evaluate_normal, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     default_variables=("depth", "normal_force", "pressure", "uz"),
 )
@@ -360,7 +360,7 @@ GRADED_ADHESIVE = Scenario(
     name="graded_adhesive",
     summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
             "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
-    references=REFERENCE, parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL), variables=AD_VARS,
+    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL), variables=AD_VARS,
     evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     default_variables=("depth", "normal_force", "pressure", "critical_radius", "critical_depth", "critical_force"),
 )
@@ -547,7 +547,7 @@ GRADED_TANGENTIAL = Scenario(
     name="graded_tangential",
     summary="Cattaneo-Mindlin partial slip between power-law graded bodies: stick radius, tangential "
             "displacement and force, shear traction (MDR)",
-    references=REFERENCE,
+    references=REFERENCE, theory="graded",
     parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL),
     variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
     conventions=CONVENTIONS, route=route,

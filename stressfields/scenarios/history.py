@@ -243,6 +243,7 @@ AXISYMMETRIC_HISTORY = Scenario(
             "load and an arbitrary tangential displacement history (fretting): surface stresses, dp/dz, "
             "stick zone, tangential force and frictional dissipation per step (MDR springs with memory, "
             "Mindlin-Deresiewicz)",
+    theory="axisymmetric",
     references=REFERENCE + "; R. D. Mindlin, H. Deresiewicz, Elastic spheres in contact under varying oblique "
                            "forces, J. Appl. Mech. 20 (1953) 327-344",
     parameters=PARAMETERS,

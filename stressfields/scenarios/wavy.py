@@ -30,8 +30,8 @@ from ..physics import wavy as wv
 from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
 
 REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy surface with an elastic "
-             "half-plane, Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467; equations as "
-             "corrected in the stressfields formula sheet seed002 (combining factor E* = E/(1-nu^2))")
+             "half-plane, Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467 (pressures with "
+             "the plane-strain modulus E* = E/(1-nu^2); see the errata of the theory page)")
 
 PSTAR = "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)"
 DOMAINS = ("periodic", "nonperiodic")
@@ -225,7 +225,7 @@ WAVY = Scenario(
     name="wavy",
     summary="Rigid multisinusoidal wavy surface (periodic or single indenter) on an elastic half-plane in "
             "continuous contact: pressure, displacement, mean and peak pressure, validity of the contact model",
-    references=REFERENCE, parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
+    references=REFERENCE, theory="wavy", parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
     physical_switch="E", methods=("auto", "series", *APPROXIMATE), check=check,
     conventions="plane strain, frictionless; pressure positive in compression; u_z positive into the body",
     route=lambda values, method, rtol: (

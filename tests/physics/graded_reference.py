@@ -1,19 +1,8 @@
-"""The graded sheet's reference points (seed001), shared by the graded physics tests."""
-import json
-from pathlib import Path
+"""The graded reference points (tests/data/graded_power_law.json), shared by the graded physics
+tests."""
+from conftest import load_reference
 
-import pytest
-
-REF_PATH = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed001" / "reference_points.json"
-
-
-def load_ref() -> dict:
-    if not REF_PATH.exists():
-        pytest.fail(f"reference points not found at {REF_PATH}")
-    return json.loads(REF_PATH.read_text())
-
-
-REF = load_ref()
+REF = load_reference("graded_power_law")
 
 
 def nu_of(case) -> float:

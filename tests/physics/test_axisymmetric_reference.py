@@ -6,20 +6,18 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import load_reference
 
 from stressfields.physics import axisymmetric as ax
 from stressfields.physics.invariants import principal_stresses, von_mises
 
-REF = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed000" / "reference_points.json"
 KEYS = ("xx", "yy", "zz", "xy", "xz", "yz")
 A = 1.3                      # contact radius used here (the points are in units of a)
 
 
 @pytest.fixture(scope="module")
 def cases():
-    if not REF.exists():
-        pytest.fail(f"reference points not found at {REF}: shared/ must sit beside the project")
-    pts = json.loads(REF.read_text())["points"]
+    pts = load_reference("axisymmetric_surface")["points"]
     assert len(pts) >= 100
     out = []
     for p in pts:

@@ -6,19 +6,17 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import load_reference
 
 from stressfields.physics import axisymmetric as ax
 from stressfields.physics.invariants import principal_stresses, von_mises
 
-REF = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed000" / "reference_points.json"
 KEYS = ("xx", "yy", "zz", "xy", "xz", "yz")
 
 
 @pytest.fixture(scope="module")
 def points():
-    if not REF.exists():
-        pytest.fail(f"reference points not found at {REF}: shared/ must sit beside the project")
-    return json.loads(REF.read_text())["points"]
+    return load_reference("axisymmetric_surface")["points"]
 
 
 def test_against_reference_points(points):

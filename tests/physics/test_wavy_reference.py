@@ -9,10 +9,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import load_reference
 
 from stressfields.physics import wavy
 
-REF = Path(__file__).resolve().parents[2].parent / "shared" / "formulas" / "seed002" / "reference_points.json"
 
 # sheet section 1: Delta_1 = 0.5; f2 = f1 + (0.01, 11); f3 = f2 + (0.00075, 40)
 PROFILES = {"f1": ([0.5], [1]), "f2": ([0.5, 0.01], [1, 11]), "f3": ([0.5, 0.01, 0.00075], [1, 11, 40])}
@@ -20,13 +20,11 @@ ATOL = 1e-11  # the sheet's recommended tolerance, in p* (and Delta_1 for length
 
 
 def _load():
-    if not REF.exists():
-        pytest.fail(f"reference points not found at {REF}: shared/ must sit beside the project")
-    return json.loads(REF.read_text())
+    return load_reference("wavy_tsukanov")
 
 
 def _cases():
-    return _load()["cases"] if REF.exists() else []
+    return _load()["cases"]
 
 
 def test_reference_file_present_and_conventions():
