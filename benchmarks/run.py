@@ -1,7 +1,5 @@
-"""Run the benchmark outside the installed CLI: ``python benchmarks/run.py [--quick] [--peers] [-d DIR]``.
-
-The same as ``stressfields bench``; kept here because benchmarks live apart from the tests.
-"""
+"""Run the benchmark: ``python benchmarks/run.py [--quick] [--peers] [-d DIR]`` (the same as
+``stressfields bench`` from a clone)."""
 import sys
 
 from stressfields.cli import main

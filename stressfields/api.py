@@ -20,6 +20,14 @@ def generate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None)
     return build(_recipe.load(recipe), chunks)
 
 
+def estimate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None) -> dict:
+    """What running ``recipe`` will produce, before anything large is computed: ``dims``, ``points``,
+    ``bytes``, ``chunks`` and ``seconds`` (extrapolated from evaluating a small leading slice)."""
+    from .build import estimate as _estimate
+
+    return _estimate(_recipe.load(recipe), chunks)
+
+
 def scenarios() -> dict[str, str]:
     """Scenario names with their one-line descriptions."""
     return {name: s.summary for name, s in REGISTRY.items()}

@@ -60,12 +60,10 @@ def _prefetched(readers):
 
 
 def file_hash(path: str | Path) -> tuple[str, str | None]:
-    """(recomputed hash, hash stored in the file or None), for a NetCDF file or a Zarr store."""
-    if Path(path).is_dir():
-        with xr.open_zarr(path, decode_cf=False, mask_and_scale=False, consolidated=True) as ds:
-            return content_hash(ds), ds.attrs.get(ATTR)
-    # cache=False: slabs are read one at a time, never the whole variable
-    with xr.open_dataset(path, decode_cf=False, mask_and_scale=False, decode_times=False, cache=False) as ds:
+    """(recomputed hash, hash stored in the file or None), for any format of `writers.FORMATS`."""
+    from .writers import format_for
+
+    with format_for(path).read(path, raw=True) as ds:
         return content_hash(ds), ds.attrs.get(ATTR)
 
 

@@ -19,28 +19,22 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .errors import OutputError
 from .hashing import file_hash, slabs
-from .io import OutputError, to_netcdf
+from .writers import Format, parts_dir
 
 MANIFEST = "manifest.json"
 
 
-def parts_dir(target: Path) -> Path:
-    return target.with_name(target.name + ".parts")
-
-
-def write_in_parts(ds: xr.Dataset, target: str | os.PathLike, *, resume: bool = False,
-                   overwrite: bool = False, progress: bool = False, scheduler=None) -> Path:
-    target = Path(target)
-    if target.exists() and not overwrite:
-        raise OutputError(f"{target} exists; refusing to overwrite it (use --overwrite)")
+def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool = False, scheduler=None) -> Path:
+    """Write ``ds`` to ``target`` (checked by `writers.check_target`) in parts of format ``fmt``."""
     dim = next(iter(ds.dims), None)
     if dim is None or ds.chunks.get(dim) is None:
-        return to_netcdf(ds, target, overwrite=overwrite, progress=progress, scheduler=scheduler)
+        return fmt.write(ds, target, progress=progress, scheduler=scheduler)
     edges = np.concatenate([[0], np.cumsum(ds.chunks[dim])]).astype(int).tolist()
     plan = {"recipe_sha256": ds.attrs.get("stressfields_recipe_sha256"), "dim": dim, "edges": edges}
     folder = parts_dir(target)
-    manifest = _start(folder, plan, resume)
+    manifest = _start(folder, plan)
     for i, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
         name = f"part-{i:05d}.nc"
         path = folder / name
@@ -48,19 +42,18 @@ def write_in_parts(ds: xr.Dataset, target: str | os.PathLike, *, resume: bool = 
             continue
         if progress:
             print(f"  part {i + 1}/{len(edges) - 1}: {dim}[{lo}:{hi}]", file=sys.stderr)
-        to_netcdf(ds.isel({dim: slice(lo, hi)}), path, overwrite=True, progress=progress, scheduler=scheduler)
+        fmt.write(ds.isel({dim: slice(lo, hi)}), path, progress=progress, scheduler=scheduler)
         manifest["parts"][name] = file_hash(path)[1]
         _dump(folder, manifest)
-    _join(folder, manifest, ds, target, overwrite)
+    _join(folder, manifest, ds, target, fmt)
     shutil.rmtree(folder)
     return target
 
 
-def _start(folder: Path, plan: dict, resume: bool) -> dict:
+def _start(folder: Path, plan: dict) -> dict:
+    """The manifest of the parts folder: the existing one (a resume, allowed by
+    `writers.check_target`) after checking it belongs to this run, or a new one."""
     if folder.exists():
-        if not resume:
-            raise OutputError(f"{folder} holds parts of an interrupted run; use --resume to finish it, "
-                              "or remove the folder")
         try:
             manifest = json.loads((folder / MANIFEST).read_text())
         except (OSError, ValueError):
@@ -81,7 +74,7 @@ def _dump(folder: Path, manifest: dict) -> None:
     os.replace(tmp, folder / MANIFEST)
 
 
-def _join(folder: Path, manifest: dict, template: xr.Dataset, target: Path, overwrite: bool) -> None:
+def _join(folder: Path, manifest: dict, template: xr.Dataset, target: Path, fmt: Format) -> None:
     """Copy the parts into one file, one part at a time, so memory stays at the size of a part."""
     import netCDF4
 
@@ -101,7 +94,7 @@ def _join(folder: Path, manifest: dict, template: xr.Dataset, target: Path, over
                         elif i == 0:
                             _copy(values, out[var], [0] * values.ndim)
 
-    to_netcdf(template, target, overwrite=overwrite, fill=fill)
+    fmt.write(template, target, fill=fill)
 
 
 def _copy(src, dst, offset: list[int], limit: int = 64 * 2 ** 20) -> None:

@@ -1,4 +1,5 @@
-"""`stressfields bench`: accuracy against run time for every method, peers, and pipeline throughput.
+"""The benchmark harness: accuracy against run time for every method, peers, and pipeline
+throughput. Run from a clone as `stressfields bench` or `python benchmarks/run.py`.
 
 Not part of the tests. Every time is the median of repeated runs after a warm-up call (caches,
 first-call costs); numpy runs the kernels on one core. Errors are against the best reference
@@ -26,14 +27,13 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from . import __version__
+from stressfields import __version__
 
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 REF_RTOL = 1e-14
 CLOSED, QUAD, SERIES = "closed form", "quadrature", "series"
 AUTO_WAVY = "auto: non-periodic series where the periodic correction < rtol"
 PEER = "ContactMechanics (FFT half-space, CCG)"
-TARGETS = {"pipeline_over_hand": 1.3, "quadrature_points_per_cpu_s": 1e6, "hertz_mindlin_over_peer": 1 / 30}
 
 
 @dataclass(frozen=True)
@@ -98,7 +98,7 @@ def _disk_points(points: int, radius: float, seed: int):
 
 
 def _axisymmetric(cfg: Config) -> dict:
-    from .physics import axisymmetric as ax
+    from stressfields.physics import axisymmetric as ax
 
     pts = _disk_points(cfg.points, 1.5, 1)
     nu, mu, ux0 = 0.3, 0.4, 0.25          # partial slip: stick radius c/a between 0.6 and 0.9
@@ -146,7 +146,7 @@ HERTZ = next(iter(PEER_PROBLEMS))
 
 def _pressure_ours(cfg: Config) -> dict:
     """Our pressure p = -sigma_zz on the peer's square, closed form and integral route."""
-    from .physics import axisymmetric as ax
+    from stressfields.physics import axisymmetric as ax
 
     rng = np.random.default_rng(3)
     x, y = rng.uniform(-1.5, 1.5, cfg.points), rng.uniform(-1.5, 1.5, cfg.points)
@@ -166,9 +166,9 @@ def _pressure_ours(cfg: Config) -> dict:
 
 
 def _graded(cfg: Config) -> dict:
-    from .physics.graded import normal as N
-    from .physics.graded import profiles as P
-    from .physics.graded import tangential as T
+    from stressfields.physics.graded import normal as N
+    from stressfields.physics.graded import profiles as P
+    from stressfields.physics.graded import tangential as T
 
     m = max(20, cfg.points // 20)          # the integral route costs ~1e-4 s per point
     k, nu, E0, c0, a = 0.5, 0.3, 1e9, 1e-3, 1e-3
@@ -201,7 +201,7 @@ def _graded(cfg: Config) -> dict:
 
 
 def _wavy(cfg: Config) -> dict:
-    from .physics import wavy
+    from stressfields.physics import wavy
 
     x = np.linspace(-1.0, 1.0, cfg.points)
     f3 = ((0.5, 0.01, 0.00075), (1, 11, 40))      # Tsukanov's f3: three harmonics
@@ -301,8 +301,8 @@ def _pipeline_vs_hand(n: int, repeats: int) -> dict:
     import netCDF4
 
     import stressfields as sf
-    from .physics import axisymmetric as ax
-    from .physics.invariants import von_mises
+    from stressfields.physics import axisymmetric as ax
+    from stressfields.physics.invariants import von_mises
 
     nu, mu, ux0 = 0.3, 0.3, 0.25
     grid = {"start": -1.5, "stop": 1.5, "num": n}
@@ -338,7 +338,7 @@ def _pipeline_vs_hand(n: int, repeats: int) -> dict:
 
 def _quadrature_rate(repeats: int) -> dict:
     """Points per CPU second of the integral route at rtol 1e-10 (six stress components)."""
-    from .physics import axisymmetric as ax
+    from stressfields.physics import axisymmetric as ax
 
     pts = 200_000
     x, y = _disk_points(pts, 1.5, 2)
@@ -357,7 +357,7 @@ def _hertz_mindlin_512(repeats: int) -> dict:
     """All surface fields of a 512^2 Hertz-Mindlin partial-slip case, through the API, at rtol 1e-10,
     on the closed-form route (the default) and forced onto the integral route."""
     import stressfields as sf
-    from .physics import invariants
+    from stressfields.physics import invariants
 
     grid = {"start": -1.5, "stop": 1.5, "num": 512}
     out = {}
@@ -503,10 +503,6 @@ def _chart(ds: xr.Dataset, path: Path) -> None:
     plt.close(fig)
 
 
-def _verdict(ok: bool) -> str:
-    return "**met**" if ok else "**missed**"
-
-
 def _report(ds: xr.Dataset, tp: dict) -> str:
     a = ds.attrs
     lines = ["# Benchmark: accuracy against run time", "",
@@ -532,19 +528,17 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
                       f"its L2 error (all nodes but the cone's tip) is {a['peer_pressure_l2_error']}."]
     if not tp:
         return "\n".join(lines) + "\n"
-    ratio, rate = tp["pipeline_over_hand"], tp["quadrature_points_per_cpu_s"]
+    ratio = tp["pipeline_over_hand"]
     hm = tp["hertz_mindlin_512_closed_s"]
     lines += ["", "## Throughput", "",
               f"- Full pipeline (recipe dict -> `generate` -> `to_netcdf`, threaded dask on {a['cores']} cores) "
               f"for the six Hertz–Mindlin surface stresses and von Mises on {tp['pipeline_points']:.0f} points: "
               f"{tp['pipeline_s']:.2f} s wall ({tp['pipeline_cpu_s']:.2f} s CPU), against {tp['hand_s']:.2f} s wall "
               f"({tp['hand_cpu_s']:.2f} s CPU) for a hand-written blocked NumPy loop over the same kernels plus a "
-              f"plain netCDF4 write: ratio {ratio:.2f} wall, {tp['pipeline_over_hand_cpu']:.2f} CPU "
-              f"(target <= {TARGETS['pipeline_over_hand']}: {_verdict(ratio <= TARGETS['pipeline_over_hand'])}).",
+              f"plain netCDF4 write: ratio {ratio:.2f} wall, {tp['pipeline_over_hand_cpu']:.2f} CPU.",
               f"- Integral route at rtol 1e-10 (six stress components, partial slip): "
               f"{tp['quadrature_paraboloid_points_per_cpu_s']:.3g} points per CPU second for the paraboloid, "
-              f"{tp['quadrature_power_law_n3_points_per_cpu_s']:.3g} for a power law n = 3 "
-              f"(target >= 1e6 per core: {_verdict(rate >= TARGETS['quadrature_points_per_cpu_s'])}).",
+              f"{tp['quadrature_power_law_n3_points_per_cpu_s']:.3g} for a power law n = 3.",
               f"- All surface fields (six components, von Mises, principal stresses, dp/dz) of a 512 x 512 "
               f"Hertz–Mindlin partial-slip case through `generate(...).compute()` at rtol 1e-10: {hm:.2f} s on "
               f"the closed-form route, {tp['hertz_mindlin_512_quadrature_s']:.2f} s forced onto the integral "
@@ -553,7 +547,7 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
         peer = tp["peer_512_s"]
         lines[-1] += (f" ContactMechanics needs {peer:.1f} s to solve the pressure alone on 512 x 512 (this run): "
                       f"ratio 1/{peer / hm:.0f} closed, 1/{peer / tp['hertz_mindlin_512_quadrature_s']:.0f} integral "
-                      f"route (target <= 1/30: {_verdict(hm / peer <= TARGETS['hertz_mindlin_over_peer'])}).")
+                      f"route.")
     else:
         lines[-1] += " (Run with --peers and ContactMechanics installed for the peer's 512 x 512 time.)"
     return "\n".join(lines) + "\n"
