@@ -2,7 +2,7 @@
 
 Values are held against direct physics calls and against routes independent of the code: the
 homogeneous limits (Hertz, JKR, Cattaneo-Mindlin), eq. (9) by scipy quadrature, eqs. (43), (52), and
-the reference points of the verified formula sheet (shared/formulas/seed001).
+the reference points (tests/data/graded_power_law.json); equations as in docs/theory/graded.md (G1) onwards.
 """
 from pathlib import Path
 

@@ -114,7 +114,7 @@ def _per_profile(p, fn):
 
 
 def _tip_singular(prof, k):
-    """Is the pressure unbounded at r = 0? For f = A r^n when n + k <= 1 (Phi(0) of the sheet, sec. 4); for a
+    """Is the pressure unbounded at r = 0? For f = A r^n when n + k <= 1 (Phi(0) of docs/theory/graded.md (G18)); for a
     spline tip (finite slope f'(0)) when k = 0 and f'(0) != 0, as for the cone."""
     if isinstance(prof, gp.PowerLaw):
         return prof.n + k <= 1.0

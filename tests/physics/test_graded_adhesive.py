@@ -16,7 +16,7 @@ E0, C0, DG = 2.5, 0.8, 0.05
 
 def close(x, ref, tol, scale=None):
     """|x - ref| <= tol * max(|ref|, scale): 'scale' covers values that are differences of larger
-    terms (d = g - Delta l; d_c = 0 exactly when n C = 1, sheet §0.3)."""
+    terms (d = g - Delta l; d_c = 0 exactly when n C = 1, docs/theory/graded.md (G28))."""
     ref = np.asarray(ref, float)
     bound = tol * np.maximum(np.abs(ref), 0.0 if scale is None else scale)
     return np.all(np.abs(np.asarray(x) - ref) <= bound)
@@ -61,7 +61,8 @@ def test_reference_points(case):
 @pytest.mark.parametrize("mode", ["fixed_load", "fixed_grips"])
 @pytest.mark.parametrize("n, An", [(1.0, 0.3), (1.5, 0.9), (2.0, 0.2), (3.0, 0.9)])
 def test_table3_literal_forms(k, mode, n, An):
-    """Table 3 of the sheet written out literally (independently of the simplified implementation)."""
+    """Table 3 written out literally (docs/theory/graded.md (G27)-(G29), second forms), independently of
+    the simplified implementation."""
     nu = 0.3
     C = 2 / (3 + k) if mode == "fixed_load" else 2 / (1 - k)
     kap = n / 2 * __import__("scipy.special").special.beta(n / 2, (1 + k) / 2)
@@ -140,7 +141,7 @@ def test_edge_singularity_and_outside():
     pe = AD.pressure(0.6 * (1 - eps), 0.6, **m)
     s = pe * (1 - (1 - eps) ** 2) ** 0.3
     assert s[0] == pytest.approx(s[1], rel=1e-4) and s[0] < 0
-    # u_z continuous at r = a, approached as (r - a)^((1-k)/2) (flat-punch part, sheet §0.3)
+    # u_z continuous at r = a, approached as (r - a)^((1-k)/2) (flat-punch part, docs/theory/graded.md (G25))
     eps = np.array([1e-6, 1e-8])
     u0 = AD.surface_displacement(0.6, 0.6, **m)
     du = AD.surface_displacement(0.6 * (1 + eps), 0.6, **m) - u0

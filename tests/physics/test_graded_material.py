@@ -1,8 +1,8 @@
 """Material mapping of the power-law graded half-space (Hess & Popov 2016, eqs. 1-4, 53-56).
 
-Expected values come from shared/formulas/seed001/reference_points.json (30-digit closed forms and
-an independent 3D Green's-function ODE), from the k = 0 limits of eq. (4) and from the Holl-ratio
-forms of the formula sheet, never from the code under test.
+Expected values come from the reference points (tests/data/graded_power_law.json: 30-digit closed
+forms and an independent 3D Green's-function ODE), from the k = 0 limits of eq. (4) and from the
+Holl-ratio forms of docs/theory/graded.md (G8), never from the code under test.
 """
 
 import numpy as np
@@ -25,7 +25,7 @@ def test_coefficients_against_reference(case):
     # independent 3D route (ODE Green's function), accurate to ~1e-12
     assert M.h_N(k, nu) == pytest.approx(case["h_N_from_3D_ODE"], rel=2e-12)
     assert M.h_T(k, nu) == pytest.approx(case["h_T_from_3D_ODE"], rel=2e-12)
-    # point-load constant C_G = (1 - nu^2) cos(k pi/2) / (pi h_N) (sheet §2.1)
+    # point-load constant C_G = (1 - nu^2) cos(k pi/2) / (pi h_N), docs/theory/graded.md (G9)
     CG = (1 - nu ** 2) * np.cos(k * np.pi / 2) / (np.pi * M.h_N(k, nu))
     assert CG == pytest.approx(float(case["green_normal_CG"]), rel=CF)
     for n, val in case["kappa"].items():

@@ -1,14 +1,16 @@
 """Non-adhesive normal contact on the power-law graded half-space (Hess & Popov 2016, eqs. 5-26).
 
-Closed forms and the quadrature route are each held against the reference points (30-digit mpmath
-values), against each other at the numerically delicate probes of sheet §0.3, and against the
-homogeneous (k = 0) Hertz and Love/Sneddon solutions.
+Closed forms and the quadrature route are each held against the reference points
+(tests/data/graded_power_law.json, 30-digit values), against each other at the numerically delicate
+probes of docs/theory/graded.md (G38)-(G42), and against the homogeneous (k = 0) Hertz and
+Love/Sneddon solutions.
 """
 
 import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from stressfields.physics.graded import material as M
 from stressfields.physics.graded import normal as N
 from stressfields.physics.graded import profiles as P
 from graded_reference import REF, nu_of
@@ -100,7 +102,7 @@ def test_cone_limit_love_sneddon(k, tol):
     assert rel(u, love) < max(tol, 1e-13)
 
 
-# ----------------------------------------------------------------- stability probes (sheet §0.3)
+# ----------------------------------------------------------------- stability probes (docs/theory/graded.md (G38)-(G42))
 
 PROBE_K = [1e-6, 1e-3, 0.5, 0.999]
 PROFILES = [(1.0, 0.3), (1.5, 0.9), (2.0, 0.3), (3.0, 0.9)]
@@ -148,7 +150,8 @@ def test_pressure_centre_limit():
 
 
 def test_printed_table2_uz_is_wrong_and_corrected_form_right():
-    """Table 2 u_z with second beta parameter (3+k)/2 (paper) vs (2+k)/2 (sheet, flag T2-u)."""
+    """Table 2 u_z with second beta parameter (3+k)/2 (as printed) vs (2+k)/2 (docs/theory/graded.md (G21),
+    Errata 1), both held against quadrature of eq. (15)."""
     from scipy.special import beta as B, betainc
 
     def Binc(z, x, y):
@@ -163,6 +166,30 @@ def test_printed_table2_uz_is_wrong_and_corrected_form_right():
     quadrature = N.surface_displacement_quad(r, A, P.PowerLaw(1.0, tan), k=k, rtol=RTOL)
     assert rel(corrected, quadrature) < 1e-9
     assert np.min(np.abs(printed / quadrature - 1)) > 0.2
+
+
+def test_printed_table2_cone_pressure_is_undefined_at_k0():
+    """Table 2 cone pressure as printed, r^k [B(-k/2, (1+k)/2) - B(r^2/a^2; -k/2, (1+k)/2)] with the
+    incomplete beta continued by eq. (26) (docs/theory/graded.md (G19)): equal to the code's cosh form
+    (G18) for 0 < k < 1, but not finite at k = 0, where the code gives Sneddon's cone pressure
+    (Errata 3)."""
+    from scipy.special import beta as B, hyp2f1
+
+    def printed(r, k, tan, nu):
+        with np.errstate(all="ignore"):
+            x, y = -k / 2, (1 + k) / 2
+            z = (r / A) ** 2
+            b_inc = z ** x / x * hyp2f1(x, 1 - y, 1 + x, z)                  # eq. (26)
+            pref = M.h_N(k, nu) * E0 * tan * B(0.5, y) * r ** k / (4 * np.pi * (1 - nu ** 2) * C0 ** k)
+            return pref * (B(x, y) - b_inc)
+
+    tan, nu = 0.3, 0.3
+    r = np.array([1e-3, 0.25, 0.5, 0.9]) * A
+    for k in (0.2, 0.5, 0.9):
+        assert rel(printed(r, k, tan, nu), N.pressure(r, A, k=k, nu=nu, E0=E0, c0=C0, n=1.0, A_n=tan)) < 1e-12
+    assert not np.isfinite(printed(r, 0.0, tan, nu)).any()
+    p0 = N.pressure(r, A, k=0.0, nu=nu, E0=E0, c0=C0, n=1.0, A_n=tan)
+    assert rel(p0, E_STAR(nu) * tan / 2 * np.arccosh(A / r)) < 1e-13
 
 
 # ----------------------------------------------------------------- profiles and transform (eqs. 5-9)

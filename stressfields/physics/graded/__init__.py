@@ -2,10 +2,12 @@
 
 M. Hess, V. L. Popov, "Method of dimensionality reduction in contact mechanics and friction:
 a user's handbook. II. Power-law graded materials", Facta Universitatis Mech. Eng. 14(3), 2016,
-251-268, as corrected by the verified formula sheet shared/formulas/seed001/formulas.md.
+251-268, doi:10.22190/FUME1603251H.  The equations, their stable forms and the departures from
+the printed paper are given in docs/theory/graded.md (G1) onwards.
 
-Modules: ``material`` (eqs. 1-4, 14, 53-56), ``profiles`` (eqs. 5-9), ``normal`` (eqs. 10-26,
-Table 2), ``adhesive`` (eqs. 27-38, Table 3), ``tangential`` (eqs. 39-52).  Pure NumPy/SciPy:
+Modules: ``material`` (paper eqs. 1-4, 14, 53-56; docs/theory/graded.md (G1)-(G10)), ``profiles``
+(eqs. 5-9; (G11)-(G14)), ``normal`` (eqs. 10-26, Table 2; (G15)-(G21)), ``adhesive`` (eqs. 27-38,
+Table 3; (G22)-(G29)), ``tangential`` (eqs. 39-52; (G30)-(G37)).  Pure NumPy/SciPy:
 arrays in, arrays out with broadcasting over every argument; errors for inputs outside the
 model's domain (``ValueError`` naming parameter, value and allowed range).  Closed forms have a
 ``*_quad`` twin (quadrature of the MDR rules, any profile object) used as an independent check

@@ -1,4 +1,5 @@
-"""Private quadrature forms of the MDR rules (10)-(15) of Hess & Popov 2016 for any 1D profile.
+"""Private quadrature forms of the MDR rules (10)-(15) of Hess & Popov 2016 for any 1D profile
+(docs/theory/graded.md (G15)-(G20)).
 
 These are the general route (tabulated profiles) and the independent check of the closed forms.
 The 1D profile enters through a callable ``fn(x, **P)``: ``x`` carries one more trailing axis
@@ -8,7 +9,7 @@ per-point parameter with a trailing axis of length 1.
 Each integral is split at the profile's break points (spline knots of a tabulated profile, where
 the integrand is not smooth) and every piece is done by tanh-sinh.  On the piece that touches a
 singular end point the kernel (distance)^alpha is removed by the power substitution
-distance = L v^p, p = 1/(1+alpha) (sheet §0.3); elsewhere p = 1 (plain mapping).  Distances to
+distance = L v^p, p = 1/(1+alpha) (docs/theory/graded.md (G42)); elsewhere p = 1 (plain mapping).  Distances to
 the end points are formed without rounding (a - r is exact for r close to a; 1 - t comes from
 the rule).
 """

@@ -6,7 +6,7 @@ one rule per distinct k; tanh–sinh uses one set of nodes for every k and conve
 for end-point singularities of any strength.  The rule returns each node together with its exact
 distance to the right end point (``tc = 1 - t`` computed without cancellation), which the
 callers use to evaluate kernels such as (x - r)^(-(1-k)/2) without rounding the distance
-(formula sheet §0.3, "edge r -> a").  Strong singularities (exponent close to -1) are first
+(docs/theory/graded.md (G42), the edge r -> a).  Strong singularities (exponent close to -1) are first
 removed by a power substitution (see :func:`power_map`).
 
 The shared ``stressfields/physics/quadrature.py`` is owned elsewhere; this module is private to

@@ -1,7 +1,7 @@
 """Adhesive (JKR-type) normal contact of a rigid indenter and a power-law graded half-space.
 
-Hess & Popov 2016 (Facta Univ. Mech. Eng. 14(3) 251-268), eqs. (27)-(38) and Table 3, with
-the clean forms of the formula sheet §5 (C_adh(k) of eq. 28 renamed from the paper's C(k)).
+Hess & Popov 2016 (Facta Univ. Mech. Eng. 14(3) 251-268), eqs. (27)-(38) and Table 3, as stated in
+docs/theory/graded.md (G22)-(G29) (C_adh(k) of eq. 28 renamed from the paper's C(k), Errata 4).
 Profiles f = A_n r^n (paraboloid: n = 2, A_n = 1/(2R); cone: n = 1, A_n = tan(theta)).
 
 Units: any consistent system.  delta_gamma (work of adhesion) in energy/area = E0 * length;
@@ -26,7 +26,7 @@ __all__ = ["adhesion_constant", "delta_l_max", "depth", "normal_force", "pressur
 
 
 def adhesion_constant(k, mode="fixed_load"):
-    """C_adh(k) of eq. (28): 2/(3+k) at fixed load (dF_N/da = 0), 2/(1-k) at fixed grips (dd/da = 0)."""
+    """C_adh(k) of eq. (28), docs/theory/graded.md (G26): 2/(3+k) at fixed load, 2/(1-k) at fixed grips."""
     k = check_k(k)
     return 2.0 / (3.0 + k) if check_mode(mode) == "fixed_load" else 2.0 / (1.0 - k)
 
@@ -41,20 +41,23 @@ def _dl(a, cN, k, dgam):
 
 
 def delta_l_max(a, *, k, nu, E0, c0, delta_gamma, E0_2=np.inf, nu_2=None):
-    """Maximum stretch of the boundary springs Delta l_max(a) = sqrt(2 pi dgam a/c_N(a)), eq. (27) [length]."""
+    """Maximum stretch of the edge springs Delta l_max(a) = sqrt(2 pi dgam a/c_N(a)) [length].
+
+    Eq. (27), docs/theory/graded.md (G22).
+    """
     cN = _cN(k, nu, E0, c0, E0_2, nu_2)
     dgam = check_positive("delta_gamma", delta_gamma, allow_zero=True)
     return _dl(check_positive("a", a), cN, np.asarray(k, float), dgam)
 
 
 def depth(a, *, k, nu, E0, c0, n, A_n, delta_gamma, E0_2=np.inf, nu_2=None):
-    """d(a) = kappa A_n a^n - Delta l_max(a), eqs. (27), (30), Table 3 [length]."""
+    """d(a) = kappa A_n a^n - Delta l_max(a), eqs. (27), (30), Table 3, docs/theory/graded.md (G22) [length]."""
     dl = delta_l_max(a, k=k, nu=nu, E0=E0, c0=c0, delta_gamma=delta_gamma, E0_2=E0_2, nu_2=nu_2)
     return normal.depth(a, k=k, n=n, A_n=A_n) - dl
 
 
 def normal_force(a, *, k, nu, E0, c0, n, A_n, delta_gamma, E0_2=np.inf, nu_2=None):
-    """F_N(a) = F_N,Hertz-type(a) - 2 c_N* a^(1+k) Delta l_max/(1+k), eqs. (31), Table 3 [force]."""
+    """F_N(a) = F_N,Hertz-type(a) - 2 c_N* a^(1+k) Delta l_max/(1+k), eq. (31), Table 3, docs/theory/graded.md (G23)."""
     cN = _cN(k, nu, E0, c0, E0_2, nu_2)
     a = check_positive("a", a)
     k = np.asarray(k, float)
@@ -74,7 +77,7 @@ def _punch(r, a, k):
 
 
 def pressure(r, a, *, k, nu, E0, c0, n, A_n, delta_gamma, E0_2=np.inf, nu_2=None):
-    """Adhesive pressure p(r; a), eq. (37) generalised to A_n r^n (sheet §5) [pressure].
+    """Adhesive pressure p(r; a), eq. (37) generalised to A_n r^n, docs/theory/graded.md (G24) [pressure].
 
     p = p_non-adhesive(r; a) - (c_N*/pi) Delta l_max a^(-(1-k)) (1 - r^2/a^2)^(-(1-k)/2);
     tensile (negative) and singular at the edge: -inf at r = a, 0 for r > a.
@@ -89,7 +92,8 @@ def pressure(r, a, *, k, nu, E0, c0, n, A_n, delta_gamma, E0_2=np.inf, nu_2=None
 
 
 def surface_displacement(r, a, *, k, nu, E0, c0, n, A_n, delta_gamma, E0_2=np.inf, nu_2=None):
-    """u_z(r; a) with adhesion: eq. (15) applied to u_1D of eq. (35) (not printed in the paper).
+    """u_z(r; a) with adhesion: eq. (15) applied to u_1D of eq. (35) (not printed in the paper),
+    docs/theory/graded.md (G25).
 
     Inside: d(a) - f(r); outside: the non-adhesive u_z minus Delta l_max I_{a^2/r^2}((1+k)/2, (1-k)/2)
     (the flat-punch part).  Units of length.
@@ -114,7 +118,7 @@ def _critical_check(n, k):
 
 
 def critical_radius(*, k, nu, E0, c0, n, A_n, delta_gamma, mode="fixed_load", E0_2=np.inf, nu_2=None):
-    """Critical contact radius a_c (pull-off), eq. (32) and Table 3 [length]:
+    """Critical contact radius a_c (pull-off), eq. (32) and Table 3, docs/theory/graded.md (G27) [length]:
 
     a_c = [2 pi dgam / (c_N* (C n kappa A_n)^2)]^(1/(2n+k-1)),  C = C_adh(k) (eq. 28).
     """
@@ -128,7 +132,7 @@ def critical_radius(*, k, nu, E0, c0, n, A_n, delta_gamma, mode="fixed_load", E0
 
 
 def critical_state(*, k, nu, E0, c0, n, A_n, delta_gamma, mode="fixed_load", E0_2=np.inf, nu_2=None):
-    """(a_c, d_c, F_c) at the onset of pull-off, eqs. (32)-(34) and Table 3.
+    """(a_c, d_c, F_c) at the onset of pull-off, eqs. (32)-(34) and Table 3, docs/theory/graded.md (G27)-(G29).
 
     Uses Delta l_max(a_c) = C n kappa A_n a_c^n (eq. 28) to write
     d_c = (1 - nC) kappa A_n a_c^n (exactly 0 for n C = 1, e.g. n = (3+k)/2 at fixed load) and
@@ -187,7 +191,8 @@ def pressure_quad(r, a, profile, *, k, nu, E0, c0, delta_gamma, E0_2=np.inf, nu_
 
 def critical_state_quad(profile, *, k, nu, E0, c0, delta_gamma, mode="fixed_load",
                         a_bracket=(1e-6, 1e3), E0_2=np.inf, nu_2=None, rtol=1e-10):
-    """(a_c, d_c, F_c) by root finding on the MDR rules, independent of eq. (28) and Table 3.
+    """(a_c, d_c, F_c) by root finding on the MDR rules, independent of eq. (28) and Table 3
+    (docs/theory/graded.md (G42)).
 
     Fixed load: dF_N/da = 0 with dF_N/da = 2 (g'(a) - Delta l_max'(a)) int_0^a c_N dx - 2 c_N(a) Delta l_max
     (differentiating eq. 12 with u_1D = g(a) - Delta l_max - g(x)); fixed grips: dd/da = g'(a) - Delta l_max'(a) = 0.

@@ -2,9 +2,9 @@
 
 M. Hess, V. L. Popov, "Method of dimensionality reduction in contact mechanics and friction:
 a user's handbook. II. Power-law graded materials", Facta Universitatis Mech. Eng. 14(3),
-2016, 251-268 — eqs. (1)-(4), (14), (21), (46)-(47) and appendix (53)-(56), with the
-correction of (54) from the verified formula sheet (``(1 - nu^2)``, not ``(1 - nu)``, in the
-first denominator term; flag A54).
+2016, 251-268 — eqs. (1)-(4), (14), (21), (46)-(47) and appendix (53)-(56), stated in
+docs/theory/graded.md (G1)-(G10), with the correction of (54) (``(1 - nu^2)``, not ``(1 - nu)``,
+in the first denominator term; docs/theory/graded.md (G7), Errata 2).
 
 Young's modulus E(z) = E0 (z/c0)^k with 0 <= k < 1 and constant Poisson ratio nu.  The
 foundation stiffness is c_N(x) = c_N_star |x|^k (normal) and c_T(x) = c_T_star |x|^k
@@ -23,7 +23,7 @@ __all__ = ["beta", "C_gs", "h_N", "h_T", "holl_ratio", "c_N_star", "c_T_star",
 
 
 def cos_half_pi_k(k):
-    """cos(k pi / 2) evaluated as sin((1-k) pi / 2): full relative accuracy as k -> 1 (sheet §0.3)."""
+    """cos(k pi / 2) evaluated as sin((1-k) pi / 2): full relative accuracy as k -> 1, docs/theory/graded.md (G38)."""
     return np.sin(0.5 * np.pi * (1.0 - np.asarray(k, dtype=float)))
 
 
@@ -50,25 +50,31 @@ def _h_T(k, nu):
 
 
 def beta(k, nu):
-    """beta(k, nu) = sqrt((1+k)(1 - k nu/(1-nu))), eq. (56). Dimensionless."""
+    """beta(k, nu) = sqrt((1+k)(1 - k nu/(1-nu))), eq. (56), docs/theory/graded.md (G4). Dimensionless."""
     k = check_k(k)
     return _beta(k, check_nu(nu, k))
 
 
 def C_gs(k, nu):
-    """C(k, nu) of the appendix, eq. (55) (the point-load constant of refs. [9, 15]). Dimensionless."""
+    """C(k, nu) of the appendix, eq. (55), docs/theory/graded.md (G5). Dimensionless.
+
+    The point-load constant of the paper's refs. [9, 15]; not the adhesion coefficient C_adh(k).
+    """
     k = check_k(k)
     return _C(k, _beta(k, check_nu(nu, k)))
 
 
 def h_N(k, nu):
-    """Normal stiffness factor h_N(k, nu), eq. (53); h_N(0, nu) = 1 (eq. 4). Dimensionless."""
+    """Normal stiffness factor h_N(k, nu), eq. (53), docs/theory/graded.md (G6). Dimensionless.
+
+    h_N(0, nu) = 1 (eq. 4).
+    """
     k = check_k(k)
     return _h_N(k, check_nu(nu, k))
 
 
 def h_T(k, nu):
-    """Tangential stiffness factor h_T(k, nu), eq. (54) corrected (flag A54).
+    """Tangential stiffness factor h_T(k, nu), eq. (54) corrected: docs/theory/graded.md (G7), Errata 2.
 
     h_T(0, nu) = 2/((1+nu)(2-nu)) (eq. 4). Dimensionless.
     """
@@ -77,7 +83,10 @@ def h_T(k, nu):
 
 
 def holl_ratio(k):
-    """Poisson ratio nu = 1/(2+k) at which normal and tangential problems decouple (sec. 5)."""
+    """Poisson ratio nu = 1/(2+k) at which normal and tangential problems decouple (sec. 5).
+
+    docs/theory/graded.md (G10).
+    """
     return 1.0 / (2.0 + check_k(k))
 
 
@@ -88,7 +97,7 @@ def _second_body(nu, E0_2, nu_2, k):
 
 
 def c_N_star(k, nu, E0, c0, E0_2=np.inf, nu_2=None):
-    """Normal foundation stiffness c_N(x) / |x|^k, eqs. (2), (14); units of E0 / length^k.
+    """Normal foundation stiffness c_N(x) / |x|^k, eqs. (2), (14), docs/theory/graded.md (G2); units of E0 / length^k.
 
     Body 1 is graded (E0, nu); body 2 has the same k and c0 and modulus E0_2, Poisson ratio nu_2
     (default: nu).  ``E0_2 = inf`` (default) is a rigid indenter, eq. (21):
@@ -106,7 +115,7 @@ def c_N_star(k, nu, E0, c0, E0_2=np.inf, nu_2=None):
 
 
 def c_T_star(k, nu, E0, c0, E0_2=np.inf, nu_2=None):
-    """Tangential foundation stiffness c_T(x) / |x|^k, eq. (3); units of E0 / length^k.
+    """Tangential foundation stiffness c_T(x) / |x|^k, eq. (3), docs/theory/graded.md (G3); units of E0 / length^k.
 
     Same conventions as :func:`c_N_star`; two identical bodies give h_T E0 / (2 c0^k), eq. (47).
     """
@@ -124,7 +133,7 @@ def c_T_star(k, nu, E0, c0, E0_2=np.inf, nu_2=None):
 def tangential_decoupled(k, nu, *, E0=None, E0_2=None, nu_2=None, rtol=1e-9):
     """Boolean array: do the normal and tangential contact problems decouple? (sec. 5, eqs. 39-52)
 
-    Decoupling holds (Hess & Popov 2016, verified in 3D by the formula sheet §0.1/§2.1) for
+    Decoupling holds (Hess & Popov 2016, sec. 5; docs/theory/graded.md (G10)) for
     (i) identical materials, (ii) a rigid body against a body with nu = 1/(2+k), or
     (iii) both bodies with nu = 1/(2+k).  Body 2: ``E0_2=None`` means identical to body 1
     (always decoupled); ``E0_2=inf`` rigid; a finite ``E0_2`` with ``nu_2`` (default nu) an

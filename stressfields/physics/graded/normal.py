@@ -2,7 +2,7 @@
 
 Hess & Popov 2016 (Facta Univ. Mech. Eng. 14(3) 251-268), eqs. (10)-(26) and Table 2, for the
 power-law profile f = A_n r^n (n = 2, A_2 = 1/(2R): paraboloid, eqs. 16-23; n = 1,
-A_1 = tan(theta): cone, Table 2; generic n from the formula sheet §4), and the quadrature route
+A_1 = tan(theta): cone, Table 2; generic n: docs/theory/graded.md (G15)-(G21)), and the quadrature route
 of the MDR rules for any profile object (``profiles.PowerLaw``, ``profiles.Tabulated``).
 
 Units: any consistent system (SI by default).  a, r, d, u_z in length; E0 in pressure; c0 in
@@ -38,13 +38,17 @@ def _radii(r, a):
 
 
 def depth(a, *, k, n, A_n):
-    """Indentation depth d(a) = g(a) = kappa(n,k) A_n a^n, eqs. (11), (18), Table 2 [length]."""
+    """Indentation depth d(a) = g(a) = kappa(n,k) A_n a^n [length].
+
+    Eqs. (11), (18), Table 2, docs/theory/graded.md (G15).
+    """
     n, A_n = _power_law(n, A_n)
     return kappa(n, k) * A_n * check_positive("a", a) ** n
 
 
 def normal_force(a, *, k, nu, E0, c0, n, A_n, E0_2=np.inf, nu_2=None):
-    """Normal force F_N(a) = 2 c_N* n kappa A_n a^(n+k+1) / ((1+k)(n+k+1)), eqs. (12), (19), Table 2.
+    """Normal force F_N(a) = 2 c_N* n kappa A_n a^(n+k+1) / ((1+k)(n+k+1)), eqs. (12), (19), Table 2,
+    docs/theory/graded.md (G16).
 
     Units of E0 * length^2.
     """
@@ -70,7 +74,7 @@ def _log_sinhc(t):
 
 
 def _cosh_integral(T, n, k):
-    """Phi = int_0^T (cosh t/cosh T)^(n-1) (sinh t/cosh T)^k dt for T > 0 (sheet §0.3, cosh form).
+    """Phi = int_0^T (cosh t/cosh T)^(n-1) (sinh t/cosh T)^k dt for T > 0 (cosh form, docs/theory/graded.md (G18)).
 
     The substitution t = T u^(1/(1+k)) removes the t^k end-point behaviour; the integrand is
     assembled in logarithms so that large T (r -> 0) cannot overflow.
@@ -94,7 +98,7 @@ def pressure_shape(rho, *, k, n):
     """Dimensionless pressure Phi(rho) with p = (c_N* n kappa A_n / pi) a^(n+k-1) Phi(r/a).
 
     Phi(rho) = int_0^arccosh(1/rho) (cosh t rho)^(n-1) (sinh t rho)^k dt for 0 < rho < 1 (cosh
-    form of the sheet, §0.3 and §4, equal to B(1 - rho^2; (1+k)/2, (1-n-k)/2)/2 * rho^(n+k-1));
+    form of docs/theory/graded.md (G18), equal to B(1 - rho^2; (1+k)/2, (1-n-k)/2)/2 * rho^(n+k-1));
     Phi(0) = 1/(n+k-1) for n+k > 1 and +inf otherwise; Phi = 0 for rho >= 1.
     For n = 2: Phi = (1 - rho^2)^((1+k)/2)/(1+k), i.e. eq. (22).
     """
@@ -125,11 +129,11 @@ def _shape(r, a, k, n):
 
 
 def pressure(r, a, *, k, nu, E0, c0, n, A_n, E0_2=np.inf, nu_2=None):
-    """Contact pressure p(r; a), eqs. (13), (22), Table 2 (generalised to A_n r^n, sheet §4).
+    """Contact pressure p(r; a), eqs. (13), (22), Table 2 (generalised to A_n r^n, docs/theory/graded.md (G18)).
 
     Evaluated by the cosh form p = (c_N* n kappa A_n / pi) a^(n+k-1) Phi(r/a) (see
     :func:`pressure_shape`), which is regular at k -> 0 (no pole of B(-k/2, .)) and at r -> 0, and
-    keeps full accuracy as r -> a (sheet §0.3).  p = 0 for r >= a; p(0) = +inf for the cone at k = 0.
+    keeps full accuracy as r -> a (docs/theory/graded.md (G39)).  p = 0 for r >= a; p(0) = +inf for the cone at k = 0.
     Units of E0.
     """
     n, A_n = _power_law(n, A_n)
@@ -144,9 +148,9 @@ def surface_displacement(r, a, *, k, n, A_n):
     """Surface displacement u_z(r; a) (positive into the body) for a rigid power-law indenter.
 
     Inside (r <= a): d - f(r).  Outside: eq. (15) in closed form, eq. (23) for n = 2 and Table 2
-    for n = 1 with the corrected second beta parameter (n+1+k)/2 (sheet flag T2-u), written with
-    regularised incomplete betas (the cos(k pi/2) Gamma((1-k)/2) product is cancelled
-    analytically, sheet §0.3):
+    for n = 1 with the corrected second beta parameter (n+1+k)/2 (Errata 1 of docs/theory/graded.md),
+    written with regularised incomplete betas (the cos(k pi/2) Gamma((1-k)/2) product is cancelled
+    analytically), docs/theory/graded.md (G21):
         u_z = A_n [kappa a^n I_z((1+k)/2, (1-k)/2) - r^n I_z((n+1+k)/2, (1-k)/2)],  z = a^2/r^2.
     Independent of the elastic constants.  Units of length.
     """
@@ -176,7 +180,8 @@ _SERIES_TERMS = 40
 
 
 def _far_field(r, a, k, n):
-    """u_z/(kappa A_n) for r > a from eq. (15) with (r^2 - x^2)^(-(1+k)/2) expanded in x^2/r^2:
+    """u_z/(kappa A_n) for r > a from eq. (15) with (r^2 - x^2)^(-(1+k)/2) expanded in x^2/r^2
+    (docs/theory/graded.md (G40)):
     (2/pi) cos(k pi/2) n a^(n+k+1) r^(-(1+k)) sum_j ((1+k)/2)_j/j! z^j / ((k+1+2j)(n+k+1+2j))."""
     z = (a / r) ** 2
     term = np.ones_like(z)
@@ -221,7 +226,10 @@ def normal_force_quad(a, profile, *, k, nu, E0, c0, E0_2=np.inf, nu_2=None, rtol
 
 
 def pressure_quad(r, a, profile, *, k, nu, E0, c0, E0_2=np.inf, nu_2=None, rtol=1e-10):
-    """p(r; a) = (c_N*/pi) int_r^a g'(x) (x^2 - r^2)^(-(1-k)/2) dx by quadrature, eq. (13)."""
+    """p(r; a) = (c_N*/pi) int_r^a g'(x) (x^2 - r^2)^(-(1-k)/2) dx by quadrature.
+
+    Eq. (13), docs/theory/graded.md (G17).
+    """
     r, a = _radii(r, a)
     _check_profile_range(a, profile)
     cN = c_N_star(k, nu, E0, c0, E0_2, nu_2)
@@ -229,7 +237,10 @@ def pressure_quad(r, a, profile, *, k, nu, E0, c0, E0_2=np.inf, nu_2=None, rtol=
 
 
 def surface_displacement_quad(r, a, profile, *, k, rtol=1e-10):
-    """u_z(r; a) by quadrature of eq. (15) outside and of its inverse-transform form inside."""
+    """u_z(r; a) by quadrature of eq. (15) outside and of its inverse-transform form inside.
+
+    docs/theory/graded.md (G20).
+    """
     r, a = _radii(r, a)
     d = depth_quad(a, profile, k=k, rtol=rtol)
     return _mdr.displacement_integral(r, a, _u1d(profile, rtol), {"k": check_k(k), "d": d}, rtol, profile.breaks)

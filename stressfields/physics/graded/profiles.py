@@ -1,6 +1,6 @@
 """Profiles of axisymmetric indenters and the MDR profile transform for graded media.
 
-Hess & Popov 2016 (Facta Univ. Mech. Eng. 14(3) 251-268), eqs. (5)-(9) and Table 1:
+Hess & Popov 2016 (Facta Univ. Mech. Eng. 14(3) 251-268), eqs. (5)-(9) and Table 1 (docs/theory/graded.md (G11)-(G14)):
 the 3D profile f(r) maps onto the 1D profile
     g(x) = |x|^(1-k) int_0^|x| f'(r) (x^2 - r^2)^(-(1-k)/2) dr                         (5)
 with inverse
@@ -30,7 +30,10 @@ __all__ = ["kappa", "parabolic", "conical", "g_power_law", "PowerLaw", "Tabulate
 
 
 def kappa(n, k):
-    """kappa(n, k) = (n/2) B(n/2, (1+k)/2), eq. (9). Dimensionless; broadcasts over n and k."""
+    """kappa(n, k) = (n/2) B(n/2, (1+k)/2), eq. (9), docs/theory/graded.md (G13).
+
+    Dimensionless; broadcasts over n and k.
+    """
     n = check_positive("n", n)
     k = check_k(k)
     return 0.5 * n * _B(0.5 * n, 0.5 * (1.0 + k))
@@ -95,8 +98,9 @@ class Tabulated:
     degree <= 3 exactly, which the tests use.  Evaluating beyond the last tabulated radius raises.
 
     Because the spline is piecewise cubic, the transform (5) is done exactly, piece by piece, with
-    regularised incomplete beta functions (:meth:`g`, :meth:`dg`); the outer MDR integrals are split
-    at the knots (``breaks``), where the integrands are not smooth.  Cost grows as (number of knots)^2.
+    regularised incomplete beta functions (:meth:`g`, :meth:`dg`; docs/theory/graded.md (G14)); the
+    outer MDR integrals are split at the knots (``breaks``), where the integrands are not smooth.
+    Cost grows as (number of knots)^2.
     """
 
     def __init__(self, r, f, slope_at_0=None):
@@ -207,7 +211,7 @@ def dg_quad(x, profile, *, k, rtol=1e-10):
 
 
 def f_from_g_quad(r, g, *, k, rtol=1e-10):
-    """Inverse transform, eq. (6): f(r) from a callable 1D profile ``g`` (vectorised).
+    """Inverse transform, eq. (6), docs/theory/graded.md (G12): f(r) from a callable 1D profile ``g`` (vectorised).
 
     With x = r t the kernel (1-t)^(-(1+k)/2) is removed by 1 - t = v^p, p = 2/(1-k); the
     vanishing cos(k pi/2) and the growing p combine to the finite 2 sin((1-k)pi/2)/(1-k).

@@ -1,7 +1,7 @@
 """Tangential contact with partial slip (Cattaneo-Mindlin) of power-law graded bodies.
 
 Hess & Popov 2016 (Facta Univ. Mech. Eng. 14(3) 251-268), eqs. (39)-(52), and the exact
-extension to f = A_n r^n of the formula sheet §6:
+extension to f = A_n r^n, docs/theory/graded.md (G30)-(G37):
     c/a = (1 - F_x/(mu F_N))^(1/(n+k+1)),   delta_x = mu (c_N/c_T) kappa A_n (a^n - c^n),
     tau_x(r) = mu [p(r; a) - p(r; c)]                                          (45)
 (n = 2, A_n = 1/(2R): eqs. 49-51; Holl ratio nu = 1/(2+k): eq. 52).
@@ -10,7 +10,7 @@ Bodies: body 1 is graded (E0, nu, k, c0).  Body 2 defaults to an identical body 
 eqs. 46-47); ``E0_2=inf`` is rigid; a finite E0_2 with nu_2 an elastic graded body of the same k
 and c0.  The MDR solution is exact only where the normal and tangential problems decouple (see
 :func:`material.tangential_decoupled`); otherwise the functions raise ``ValueError`` unless
-``require_decoupled=False`` asks for the uncoupled approximation.
+``require_decoupled=False`` asks for the uncoupled approximation (docs/theory/graded.md (G37)).
 Units: consistent system; delta_x in length, tau in pressure.  Every argument broadcasts.
 """
 from __future__ import annotations
@@ -54,7 +54,7 @@ def _pair(k, nu, E0, E0_2, nu_2, require_decoupled):
 
 
 def stick_radius(a, Fx_over_muFN, *, k, n=2.0):
-    """Stick radius c(a, F_x/(mu F_N)) = a (1 - F_x/(mu F_N))^(1/(n+k+1)), eq. (51) [length of a].
+    """Stick radius c(a, F_x/(mu F_N)) = a (1 - F_x/(mu F_N))^(1/(n+k+1)), eq. (51), docs/theory/graded.md (G33).
 
     Material independent.  F_x/(mu F_N) in [0, 1]; 1 is the onset of gross slip (c = 0).
     """
@@ -73,9 +73,9 @@ def stiffness_ratio(*, k, nu, E0=None, E0_2=None, nu_2=None, require_decoupled=T
 
 def max_tangential_displacement(a, *, k, nu, mu, n, A_n, E0=None, E0_2=None, nu_2=None,
                                 require_decoupled=True):
-    """delta_x,max = mu (c_N/c_T) kappa A_n a^n at the onset of gross slip, eq. (50) [length].
+    """delta_x,max = mu (c_N/c_T) kappa A_n a^n at the onset of gross slip, eq. (50), docs/theory/graded.md (G34).
 
-    At nu = 1/(2+k) for both bodies, n = 2: (3+k)/2 mu a^2/R, eq. (52).
+    At nu = 1/(2+k) for both bodies, n = 2: (3+k)/2 mu a^2/R, eq. (52), docs/theory/graded.md (G36).  Units of length.
     """
     ratio = stiffness_ratio(k=k, nu=nu, E0=E0, E0_2=E0_2, nu_2=nu_2, require_decoupled=require_decoupled)
     mu = check_positive("mu", mu, allow_zero=True)
@@ -84,18 +84,21 @@ def max_tangential_displacement(a, *, k, nu, mu, n, A_n, E0=None, E0_2=None, nu_
 
 def tangential_displacement(a, Fx_over_muFN, *, k, nu, mu, n, A_n, E0=None, E0_2=None, nu_2=None,
                             require_decoupled=True):
-    """Relative tangential displacement delta_x = mu (c_N/c_T) kappa A_n (a^n - c^n), eq. (49) [length]."""
+    """Relative tangential displacement delta_x = mu (c_N/c_T) kappa A_n (a^n - c^n) [length].
+
+    Eq. (49), docs/theory/graded.md (G34).
+    """
     dmax = max_tangential_displacement(a, k=k, nu=nu, mu=mu, n=n, A_n=A_n, E0=E0, E0_2=E0_2,
                                        nu_2=nu_2, require_decoupled=require_decoupled)
     F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
-    # 1 - (c/a)^n without cancellation for small loads: -expm1(n/(n+k+1) log1p(-F))
+    # 1 - (c/a)^n without cancellation for small loads: -expm1(n/(n+k+1) log1p(-F)), docs/theory/graded.md (G41)
     k = np.asarray(k, float)
     with np.errstate(divide="ignore"):           # F = 1: log1p(-1) = -inf, expm1(-inf) = -1 exactly
         return dmax * -np.expm1(n / (n + k + 1.0) * np.log1p(-F))
 
 
 def force_ratio_from_displacement(delta_over_delta_max, *, k, n=2.0):
-    """F_x/(mu F_N) = 1 - (1 - delta_x/delta_x,max)^((n+k+1)/n), eq. (51) (second form). Dimensionless."""
+    """F_x/(mu F_N) = 1 - (1 - delta_x/delta_x,max)^((n+k+1)/n), eq. (51) (second form), docs/theory/graded.md (G35)."""
     D = check_interval("delta_over_delta_max", delta_over_delta_max, 0.0, 1.0)
     k = check_k(k)
     n = check_positive("n", n)
@@ -111,7 +114,7 @@ def normal_force(a, *, k, nu, E0, c0, n, A_n, E0_2=None, nu_2=None):
 
 def shear_traction(r, a, Fx_over_muFN, *, k, nu, mu, E0, c0, n, A_n, E0_2=None, nu_2=None,
                    require_decoupled=True):
-    """Shear traction tau_x(r) = mu [p(r; a) - p(r; c)], eqs. (44)-(45) [pressure].
+    """Shear traction tau_x(r) = mu [p(r; a) - p(r; c)], eqs. (44)-(45), docs/theory/graded.md (G32) [pressure].
 
     p is the normal pressure of the body pair (c_N of eq. 46 for identical bodies).  tau = mu p in
     the slip annulus c < r < a; finite at r = c (both terms are continuous there).
