@@ -7,12 +7,37 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping
+from typing import Any, Callable, Mapping, Protocol, Sequence, TypedDict
 
 import numpy as np
 
 #: Values a parameter may take.
 FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
+
+
+class Options(TypedDict):
+    """What a scenario's evaluate receives besides the parameter values."""
+
+    method: str        # the recipe's [method] method: "auto" or one of Scenario.methods
+    rtol: float        # the accuracy target of quadrature and series
+    physical: bool     # physical units (the recipe gave the scenario's physical_switch)
+
+
+class Evaluate(Protocol):
+    """The evaluate contract: the requested variables on one block of points.
+
+    ``params`` maps each parameter to a NumPy value broadcastable to the block (a scalar, or a
+    string for a choice, where the parameter is fixed); the result maps each requested name to an
+    array broadcastable to the block, in the units of the variable's declaration for the mode.
+    """
+
+    def __call__(self, names: Sequence[str], params: Mapping[str, Any], options: Options) -> dict[str, np.ndarray]: ...
+
+
+class Route(Protocol):
+    """route(values, method, rtol) -> (the method used, its accuracy), said in every field's attributes."""
+
+    def __call__(self, values: Mapping[str, Any], method: str, rtol: float) -> tuple[str, str]: ...
 
 
 @dataclass(frozen=True)
@@ -128,7 +153,7 @@ class Scenario:
     #: evaluate(names, params, options) -> {name: array}; params maps each parameter name to a
     #: NumPy value broadcastable to the block (a scalar for a fixed one); options holds the
     #: recipe's [method] table and the mode ("physical": bool).
-    evaluate: Callable[..., dict[str, np.ndarray]]
+    evaluate: Evaluate
     #: parameters whose presence switches the scenario to physical units
     physical_switch: str | None = None
     #: sign conventions of the data, said in each file's `comment`
@@ -139,7 +164,7 @@ class Scenario:
     #: extra checks across parameters: check(values, physical, method) -> list of messages
     check: Callable[..., list[str]] | None = None
     #: route(values, method, rtol) -> (the method used, its accuracy), said in every field's attributes
-    route: Callable[[dict, str, float], tuple[str, str]] | None = None
+    route: Route | None = None
     #: defaults that depend on other parameters: complete(values) fills them in place, before `check`
     complete: Callable[[dict], None] | None = None
     #: the page of docs/theory/ that gives the equations the scenario implements
