@@ -1,5 +1,5 @@
 """Scenario `wavy` end to end: recipe -> dataset -> NetCDF, against the physics kernels, against
-classical closed forms (Westergaard, Hertz) and the formula sheet's independent reference points,
+classical closed forms (Westergaard, Hertz) and the independent reference points of tests/data,
 series bookkeeping and flags, and recipe errors."""
 import math
 
@@ -36,7 +36,8 @@ def test_domain_and_harmonic_count_are_dimensions_side_by_side(both):
     assert list(both.domain_name.values) == ["periodic", "nonperiodic"]
     assert both.domain.attrs["flag_meanings"] == "periodic nonperiodic"
     assert list(both.n_harmonics.values) == [1, 2, 3]
-    # the two problems differ (long-range interaction), most at large contact (sheet: +46 % at 0.8)
+    # the two problems differ (long-range interaction), most at large contact (+46 % at 0.8,
+    # docs/theory/wavy.md (W26))
     ratio = both.mean_pressure.sel(domain=0, a=0.8) / both.mean_pressure.sel(domain=1, a=0.8)
     assert np.all((ratio > 1.4) & (ratio < 1.5))
 
@@ -67,8 +68,9 @@ def test_values_equal_direct_physics_calls(both):
             *case, periodic=kw["periodic"], n_harmonics=N[..., 0]))
 
 
-def test_reference_points_of_the_formula_sheet(both):
-    """Independent Nystroem solutions (sheet section 10) for f1-f3, both domains, 2a/lambda_1 = 0.05, 0.2, 0.5."""
+def test_reference_points(both):
+    """Independent Nystroem solutions (tests/data/wavy_tsukanov.json) for f1-f3, both domains,
+    2a/lambda_1 = 0.05, 0.2, 0.5."""
     profiles = {"f1": 1, "f2": 2, "f3": 3}
     checked = 0
     for case in load_reference("wavy_tsukanov")["cases"]:

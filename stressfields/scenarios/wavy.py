@@ -76,7 +76,8 @@ VARIABLES = (
                      "(lengths in units of lambda_1/(2 pi)). Inside the contact u_z(x) = u_z(0) - g(x)."),
     Variable("mean_pressure", "mean (nominal) pressure p_inf = (1/lambda_1) * integral of p over the contact "
              "(non-periodic: load per unit length / lambda_1)", units_physical="Pa", scale=PSTAR, dims=CASE,
-             comment="Closed forms: eq. (16) (non-periodic), Legendre form of the formula sheet (periodic)."),
+             comment="Closed forms: eq. (16) (non-periodic), docs/theory/wavy.md (W12); Legendre form (periodic), "
+                     "docs/theory/wavy.md (W11)."),
     Variable("peak_pressure", "pressure p(0) at the contact centre (the paper's p_max)", units_physical="Pa",
              scale=PSTAR, dims=CASE),
     Variable("max_pressure", "global maximum of the contact pressure over the contact", units_physical="Pa",
@@ -85,20 +86,21 @@ VARIABLES = (
              scale="the contact half-width a", dims=CASE),
     Variable("continuous_contact", "exact test of the continuous-contact assumption", dtype="int8", dims=CASE,
              flag_values=(0, 1), flag_meanings=("fails", "holds"),
-             comment="1 where p/sqrt(1-(x/a)^2) >= 0 over the contact and the gap outside it is >= 0 (formula "
-                     "sheet section 6). 0: the continuous-contact solution has tensile pressure or the profile "
-                     "penetrates the surface outside the contact; the real contact is then discrete and the "
-                     "values here are those of the model only."),
+             comment="1 where p/sqrt(1-(x/a)^2) >= 0 over the contact and the gap outside it is >= 0 "
+                     "(docs/theory/wavy.md (W20)). 0: the continuous-contact solution has tensile pressure or "
+                     "the profile penetrates the surface outside the contact; the real contact is then discrete "
+                     "and the values here are those of the model only."),
     Variable("johnson_parameter", "Johnson parameter chi = max over ripples i >= 2 of pi E* Delta_i/(lambda_i "
-             "p_h), p_h = 2 p_inf lambda_1/(pi a) (as corrected in the formula sheet; 0 for one harmonic)",
+             "p_h), p_h = 2 p_inf lambda_1/(pi a) (as corrected in docs/theory/wavy.md (W21); 0 for one harmonic)",
              dims=CASE, comment="The paper's criterion chi < 1 is a heuristic, neither necessary nor sufficient: "
                                 "see continuous_contact."),
     Variable("n_terms", f"number of sine terms summed in {_SERIES}", dtype="int32", dims=CASE),
     Variable("periodic_correction", "bound on max |p_periodic - p_nonperiodic| over the contact: how far the "
              "periodic surface's pressure is from a single indenter's of the same contact width",
              units_physical="Pa", scale=PSTAR, dims=CASE,
-             comment="From both series on 32 Chebyshev nodes of the smooth difference (formula-sheet kernels "
-                     "(1) and (2) differ by a smooth term); +inf where that interpolant is not resolved. "
+             comment="From both series on 32 Chebyshev nodes of the smooth difference (the kernels of "
+                     "eqs. (1) and (2) differ by a smooth term), docs/theory/wavy.md (W26); +inf where that "
+                     "interpolant is not resolved. "
                      "Method auto uses the non-periodic series for a periodic pressure where this plus the "
                      "non-periodic series error is below the tolerance (validity = 3)."),
     Variable("error_estimate", "bound on the series error of pressure, peak_pressure and max_pressure "

@@ -39,7 +39,7 @@ def test_westergaard(w):
     assert abs(wavy.mean_pressure(w, **F1, periodic=True) - np.sin(a / 2) ** 2) < 1e-15
     p0, _ = wavy.peak_pressure(w, **F1, periodic=True)
     assert abs(p0 - 2 * np.sin(a / 2)) < 1e-12
-    # approach with the mean-zero datum: Delta sin^2(a/2) (1 - 2 ln sin(a/2)) (sheet s. 5)
+    # approach with the mean-zero datum: Delta sin^2(a/2) (1 - 2 ln sin(a/2)), docs/theory/wavy.md (W27)
     s = np.sin(a / 2)
     assert abs(wavy.approach(w, **F1, periodic=True) - s * s * (1 - 2 * np.log(s))) < 1e-14
 
@@ -94,7 +94,8 @@ def test_mean_pressure_closed_form_vs_quadrature(w, periodic):
 
 @pytest.mark.parametrize("w", [0.3, 0.8, 0.95])
 def test_periodic_peak_vs_legendre_integral(w):
-    """p_i(0) = (Delta_i n_i^2/4) int_0^a [P_{n-1} + P_n](cos t)/cos(t/2) dt (sheet s. 3), times 2/Delta_1."""
+    """p_i(0) = (Delta_i n_i^2/4) int_0^a [P_{n-1} + P_n](cos t)/cos(t/2) dt, docs/theory/wavy.md (W13),
+    times 2/Delta_1."""
     a = np.pi * w
     amp, wn = F3["amplitudes"], F3["wavenumbers"]
     ref = 0.0
@@ -116,7 +117,8 @@ def test_nonperiodic_peak_eq21(w):
 
 
 def _uz_eq15(t, a, amp, wn, n_terms=200):
-    """Paper's eq. (15) (cleaned, sheet s. 4), summed directly: u_z(x)/Delta_1 inside the contact."""
+    """Paper's eq. (15) with the log term ln(2/a), docs/theory/wavy.md (W17), summed directly:
+    u_z(x)/Delta_1 inside the contact."""
     T = lambda k: np.cos(k * np.arccos(t))
     out = 0.0
     for d, n in zip(amp, wn):
@@ -148,7 +150,7 @@ def test_hertz_limit_pressure_order():
         errs.append(np.max(np.abs(p - a * np.sqrt(1 - t * t))) / a)
     order = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
     np.testing.assert_allclose(order, 2.0, atol=0.02)
-    # relative size close to the sheet's 0.115 a^2 (section 5)
+    # relative size close to 0.115 a^2, the cosine-versus-parabola difference, docs/theory/wavy.md (W28)
     assert 0.08 < errs[-1] / (np.pi * ws[-1]) ** 2 < 0.13
 
 
@@ -163,13 +165,14 @@ def test_hertz_limit_gap_outside():
 
 
 def test_periodic_tends_to_nonperiodic():
-    """Sheet s. 10: p_inf^per/p_inf^non - 1 = +0.1, 0.4, 1.7, 3.9, 12.3, 46 % at 2a/lambda_1 = 0.05 ... 0.8,
-    the same for f1, f2, f3 (to 0.6 points); the difference vanishes like a^2."""
+    """p_inf^per/p_inf^non - 1 = +0.1, 0.4, 1.7, 3.9, 12.3, 46 % at 2a/lambda_1 = 0.05 ... 0.8 (values of the
+    independent reference solutions), the same for f1, f2, f3 (to 0.6 points); the difference vanishes
+    like a^2, docs/theory/wavy.md (W26)."""
     ws = np.array([0.05, 0.1, 0.2, 0.3, 0.5, 0.8])
-    sheet = np.array([0.1, 0.4, 1.7, 3.9, 12.3, 46])
+    expected = np.array([0.1, 0.4, 1.7, 3.9, 12.3, 46])
     for prof, tol in [(F1, 0.06), (F3, 0.6)]:
         r = 100 * (wavy.mean_pressure(ws, **prof, periodic=True) / wavy.mean_pressure(ws, **prof, periodic=False) - 1)
-        np.testing.assert_allclose(r, sheet, atol=max(tol, 0.0), rtol=0.02)
+        np.testing.assert_allclose(r, expected, atol=max(tol, 0.0), rtol=0.02)
     # sup-norm difference of the pressure fields, rough profile, shrinking a
     t = np.linspace(0, 1, 401)
     ws = np.array([0.02, 0.01, 0.005])
@@ -182,8 +185,9 @@ def test_periodic_tends_to_nonperiodic():
 
 
 def test_edge_coefficients():
-    """Edge coefficient K = phi(|x| = a): non-periodic E* sum Delta n (a n/2) J0(a n) (sheet s. 4);
-    periodic K = sqrt(a/(2 tan(a/2))) (1/pi) dW/da, W = lambda_1 p_inf (sheet s. 6): by finite differences."""
+    """Edge coefficient K = phi(|x| = a), docs/theory/wavy.md (W19): non-periodic
+    E* sum Delta n (a n/2) J0(a n); periodic K = sqrt(a/(2 tan(a/2))) (1/pi) dW/da, W = lambda_1 p_inf:
+    by finite differences."""
     amp, wn = np.array(F3["amplitudes"]), np.array(F3["wavenumbers"])
     for w in [0.1, 0.45, 0.8]:
         a = np.pi * w
@@ -202,7 +206,7 @@ def test_edge_coefficients():
 
 
 def test_paper_approximations_are_inaccurate():
-    """Eq. (18) is exact only at x = 0; eq. (20) is off even at x = 0 (sheet s. 4)."""
+    """Eq. (18) is exact only at x = 0; eq. (20) is off even at x = 0, docs/theory/wavy.md (W29)."""
     w, t = 0.5, np.linspace(0, 1, 101)
     p, _ = wavy.pressure(t, w, **F3, periodic=False)
     p18 = wavy.approximate_pressure_eq18(t, w, **F3)
@@ -210,3 +214,58 @@ def test_paper_approximations_are_inaccurate():
     assert abs(p18[0] - p[0]) < 1e-12
     assert np.max(np.abs(p18 - p)) > 1e-3
     assert abs(p20[0] - p[0]) > 1e-3
+
+
+def test_eq20_is_the_jacobi_anger_sum_of_eq19():
+    """Eq. (20) as evaluated, docs/theory/wavy.md (W29), equals the series (19) summed term by term:
+    J_1(a n) + sum_{j>=1} J_{2j}(a n + 1) cos(2 j x/a) = J_1(a n) + [cos((a n + 1) sin(x/a)) - J_0(a n + 1)]/2
+    by Jacobi-Anger.  With the factor 1/2 on the cosine only (J_0 subtracted whole) the difference
+    would be J_0(a n + 1)/2 * 2 Delta n sqrt(1 - t^2), far above the tolerance."""
+    t = np.linspace(-1.0, 1.0, 41)
+    amp, wn = F3["amplitudes"], F3["wavenumbers"]
+    for w in (0.05, 0.3, 0.7):
+        a = np.pi * w
+        ref = 0.0
+        for d, n in zip(amp, wn):
+            z = a * n
+            acc = j1(z) + sum(jv(2 * j, z + 1.0) * np.cos(2 * j * t) for j in range(1, 200))
+            ref = ref + 2 * d / amp[0] * n * np.sqrt(1 - t * t) * acc
+        np.testing.assert_allclose(wavy.approximate_pressure_eq20(t, w, **F3), ref, rtol=0, atol=1e-13)
+
+
+def _uz_quadrature(x, w, amplitudes, wavenumbers, periodic):
+    """u_z(x)/Delta_1 for |x| < a straight from the displacement integral, docs/theory/wavy.md (W15),
+    C = 0: -(1/pi) int p/p* ln|x - xi| dxi (p* = E* Delta_1/2 turns -2/(pi E*) into -Delta_1/pi),
+    plus ln(2 sin(y/2)/y) for the periodic kernel.  The log singularity at xi = x and the square-root
+    ends are taken by QUADPACK's algebraic-log weights (p = phi sqrt(1 - (xi/a)^2), phi smooth)."""
+    a = np.pi * w
+    phi = lambda xi: wavy.pressure_shape(xi / a, w, amplitudes, wavenumbers, periodic=periodic, rtol=1e-14)[0]
+    kw = dict(epsabs=1e-13, epsrel=1e-12, limit=400)
+    right = quad(lambda xi: phi(xi) * np.sqrt(a + xi) / a, x, a, weight="alg-loga", wvar=(0.0, 0.5), **kw)[0]
+    left = quad(lambda xi: phi(xi) * np.sqrt(a - xi) / a, -a, x, weight="alg-logb", wvar=(0.5, 0.0), **kw)[0]
+    total = left + right
+    if periodic:                     # smooth remainder of ln|2 sin(y/2)|: midpoint rule in xi = a cos s
+        m = 2000
+        s = (np.arange(m) + 0.5) * np.pi / m
+        xi = a * np.cos(s)
+        p, _ = wavy.pressure(np.cos(s), w, amplitudes, wavenumbers, periodic=True, rtol=1e-14)
+        total += np.sum(p * np.log(np.sinc((x - xi) / (2 * np.pi))) * a * np.sin(s)) * np.pi / m
+    return -total / np.pi
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_pressure_solves_the_contact_integral_equation(periodic):
+    """The pressure, combined with E* (docs/theory/wavy.md (W5)), reproduces the imposed surface
+    displacement in the contact: u_z(x) - u_z(0) = -g(x) with u_z from quadrature of eq. (5), for the
+    rough profile f3.  With the printed combining factor E/(2(1-nu^2)) the pressure, and so
+    u_z(x) - u_z(0), would be half as large.  The absolute u_z(0) checks the datum of (W15) (and thus
+    the ln(2/a) of eq. (15) and the periodic ln|2 sin| kernel)."""
+    w = 0.3
+    a = np.pi * w
+    t = np.array([0.0, 0.3, 0.7, 0.95])
+    u = np.array([_uz_quadrature(ti * a, w, **F3, periodic=periodic) for ti in t])
+    g = wavy.initial_gap(t, w, **F3)
+    assert g[-1] > 0.1
+    np.testing.assert_allclose(u - u[0], -g, rtol=0, atol=1e-12)
+    assert abs(u[0] - wavy.approach(w, **F3, periodic=periodic)) < 1e-12
+    np.testing.assert_allclose(wavy.displacement(t, w, **F3, periodic=periodic)[0], u, rtol=0, atol=1e-12)

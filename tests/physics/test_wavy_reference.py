@@ -1,7 +1,8 @@
-"""Wavy contact kernels against the independent reference points of formula sheet seed002.
+"""Wavy contact kernels against the independent reference points of tests/data/wavy_tsukanov.json.
 
 The reference values come from a Gauss-Chebyshev Nystroem solution of the physical integral
-equations (shared/formulas/seed002/reference.py), not from the paper's series used here.
+equations (docs/theory/wavy.md (W3), (W4); provenance in tests/data/README.md), not from the
+paper's series used here.
 """
 
 import json
@@ -14,9 +15,9 @@ from conftest import load_reference
 from stressfields.physics import wavy
 
 
-# sheet section 1: Delta_1 = 0.5; f2 = f1 + (0.01, 11); f3 = f2 + (0.00075, 40)
+# the paper's figure profiles, docs/theory/wavy.md (W1): Delta_1 = 0.5; f2 = f1 + (0.01, 11); f3 = f2 + (0.00075, 40)
 PROFILES = {"f1": ([0.5], [1]), "f2": ([0.5, 0.01], [1, 11]), "f3": ([0.5, 0.01, 0.00075], [1, 11, 40])}
-ATOL = 1e-11  # the sheet's recommended tolerance, in p* (and Delta_1 for lengths)
+ATOL = 1e-11  # about 25x the reference data's own error (<= 4e-13), in p* (and Delta_1 for lengths)
 
 
 def _load():
@@ -75,7 +76,7 @@ def test_displacement_at_centre(case):
     u0, _ = wavy.displacement(0.0, w, **kw)
     assert abs(u0 - c["uz0_over_Delta1"]) < ATOL
     assert abs(wavy.approach(w, **kw) - c["uz0_over_Delta1"]) < ATOL
-    # inside the contact u_z = u_z(0) - g(x) (sheet's JSON note)
+    # inside the contact u_z = u_z(0) - g(x), docs/theory/wavy.md (W15)
     x = np.array([0.3, 0.9])
     u, _ = wavy.displacement(x, w, **kw)
     g = wavy.initial_gap(x, w, kw["amplitudes"], kw["wavenumbers"])

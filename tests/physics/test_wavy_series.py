@@ -16,28 +16,29 @@ def _single(n):
     return dict(amplitudes=[1.0], wavenumbers=[1]) if n == 1 else dict(amplitudes=[1e-30, 1.0], wavenumbers=[1, n])
 
 
-# formula sheet section 9: highest Chebyshev index J for 1e-10 (periodic), K terms (Bessel)
-SHEET_J = {1: [7, 13, 27, 73, 145, 293, 1465], 2: [7, 13, 31, 85, 171, 343, 1719],
+# docs/theory/wavy.md (W24): highest Chebyshev index J for 1e-10 (periodic), K terms (Bessel), measured
+# against long sums in the sup norm over the contact
+TABLE_J = {1: [7, 13, 27, 73, 145, 293, 1465], 2: [7, 13, 31, 85, 171, 343, 1719],
            11: [11, 25, 59, 169, 343, 689, 3425], 40: [21, 51, 131, 387, 791, 1589, 7929]}
-SHEET_W = [0.05, 0.2, 0.5, 0.8, 0.9, 0.95, 0.99]
-SHEET_Z = [0.1, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 400]
-SHEET_K = [3, 4, 5, 7, 10, 14, 21, 40, 68, 123, 229]
+TABLE_W = [0.05, 0.2, 0.5, 0.8, 0.9, 0.95, 0.99]
+TABLE_Z = [0.1, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 400]
+TABLE_K = [3, 4, 5, 7, 10, 14, 21, 40, 68, 123, 229]
 
 
-@pytest.mark.parametrize("n", sorted(SHEET_J))
-def test_periodic_lengths_follow_sheet_law(n):
-    _, info = wavy.peak_pressure(SHEET_W, **_single(n), periodic=True, rtol=1e-10)
+@pytest.mark.parametrize("n", sorted(TABLE_J))
+def test_periodic_lengths_follow_length_law(n):
+    _, info = wavy.peak_pressure(TABLE_W, **_single(n), periodic=True, rtol=1e-10)
     J = 2 * info["n_terms"] - 1
-    # our criterion (l1 tail of the coefficients) is slightly stricter than the sheet's sup norm
-    assert np.all(J >= 0.95 * np.array(SHEET_J[n]) - 2)
-    assert np.all(J <= 1.2 * np.array(SHEET_J[n]) + 2)
+    # our criterion (l1 tail of the coefficients, (W22)) is slightly stricter than the table's sup norm
+    assert np.all(J >= 0.95 * np.array(TABLE_J[n]) - 2)
+    assert np.all(J <= 1.2 * np.array(TABLE_J[n]) + 2)
     assert info["converged"].all()
 
 
-def test_bessel_lengths_follow_sheet_law():
+def test_bessel_lengths_follow_length_law():
     n = 1000
-    _, info = wavy.peak_pressure(np.array(SHEET_Z) / (np.pi * n), **_single(n), periodic=False, rtol=1e-10)
-    np.testing.assert_array_equal(info["n_terms"], SHEET_K)
+    _, info = wavy.peak_pressure(np.array(TABLE_Z) / (np.pi * n), **_single(n), periodic=False, rtol=1e-10)
+    np.testing.assert_array_equal(info["n_terms"], TABLE_K)
 
 
 def test_periodic_terms_grow_with_ratio_cot_a_over_4():
@@ -52,7 +53,7 @@ def test_periodic_terms_grow_with_ratio_cot_a_over_4():
 @pytest.mark.parametrize("w", [0.99])
 def test_stable_near_full_contact(w):
     """2a/lambda_1 = 0.99: the rough profile (n up to 40) either meets rtol or says it does not,
-    and the estimate covers the true error of p(0) (Legendre closed form, sheet s. 3)."""
+    and the estimate covers the true error of p(0) (Legendre closed form, docs/theory/wavy.md (W13))."""
     a = np.pi * w
     amp, wn = F3["amplitudes"], F3["wavenumbers"]
     ref = 0.0
@@ -60,7 +61,7 @@ def test_stable_near_full_contact(w):
         f = lambda t: (eval_legendre(n - 1, np.cos(t)) + eval_legendre(n, np.cos(t))) / np.cos(t / 2)
         ref += 2 * d / amp[0] * n * n / 4 * quad(f, 0, a, limit=1000, epsabs=1e-13, epsrel=1e-13)[0]
     p0, info = wavy.peak_pressure(w, **F3, periodic=True)
-    assert info["n_terms"] > 3000          # sheet: J ~ 7929 for n = 40 at 0.99
+    assert info["n_terms"] > 3000          # (W24): J ~ 7929 for n = 40 at 0.99
     assert abs(p0 - ref) <= info["error_estimate"] + 1e-12
     assert abs(p0 - ref) < 1e-11          # rounding-limited there, but still accurate
     p, info = wavy.pressure(np.linspace(0, 1, 101), w, **F3, periodic=True)

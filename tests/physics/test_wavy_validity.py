@@ -1,8 +1,9 @@
 """Continuous-contact validity: the exact test (P) + (G) decides, not the Johnson parameter.
 
-Failure intervals come from the formula sheet's scan (section 6, scan_admissibility.json);
-the gap outside the contact is also checked by brute-force quadrature of the displacement
-integral (eq. 5) with the sheet's kernels.
+Failure intervals come from an independent scan of 2a/lambda_1 (step 0.0025, interval ends bisected
+to 1e-4) made with a Nystroem solution of the integral equations, not with this package; the gap
+outside the contact is also checked by brute-force quadrature of the displacement integral (eq. 5)
+with the kernels of docs/theory/wavy.md (W15).  The test itself is docs/theory/wavy.md (W20).
 """
 
 import numpy as np
@@ -13,8 +14,8 @@ from stressfields.physics import wavy
 
 PROFILES = {"f1": ([0.5], [1]), "f2": ([0.5, 0.01], [1, 11]), "f3": ([0.5, 0.01, 0.00075], [1, 11, 40])}
 
-# sheet section 6: intervals of 2a/lambda_1 where (P) tensile pressure / (G) interpenetration occur
-SHEET_P = {
+# intervals of 2a/lambda_1 where (P) tensile pressure / (G) interpenetration occur (the scan above)
+SCAN_P = {
     ("f1", True): [], ("f1", False): [(0.7655, 0.995)],
     ("f2", True): [(0.6446, 0.7079), (0.8084, 0.9482)],
     ("f2", False): [(0.1085, 0.1185), (0.6312, 0.7708), (0.7922, 0.995)],
@@ -22,11 +23,11 @@ SHEET_P = {
                    (0.8153, 0.9593), (0.9771, 0.995)],
     ("f3", False): [(0.0795, 0.0989), (0.1193, 0.1511), (0.2785, 0.2952), (0.4707, 0.5125), (0.6232, 0.995)],
 }
-SHEET_G = {
+SCAN_G = {
     ("f1", True): [], ("f1", False): [(0.6079, 0.995)],
     ("f2", True): [(0.6293, 0.6807), (0.7717, 0.8836)],
     ("f2", False): [(0.1061, 0.1143), (0.5902, 0.995)],
-    # the sheet lists (0.6205, 0.6903) as one interval; see test_sheet_gap_interval_f3_periodic_has_a_hole
+    # the scan lists (0.6205, 0.6903) as one interval; see test_gap_interval_f3_periodic_has_a_hole
     ("f3", True): [(0.0754, 0.0898), (0.1101, 0.1372), (0.2775, 0.2861), (0.4662, 0.4888), (0.6205, 0.6423),
                    (0.6465, 0.6903), (0.7677, 0.8905), (0.9689, 0.995)],
     ("f3", False): [(0.0753, 0.0899), (0.1099, 0.1373), (0.2746, 0.2878), (0.4606, 0.4914), (0.5928, 0.995)],
@@ -43,11 +44,11 @@ def _outside(w, intervals, margin=1.5e-3):
 
 @pytest.mark.parametrize("periodic", [True, False])
 @pytest.mark.parametrize("name", sorted(PROFILES))
-def test_failure_intervals_match_sheet_scan(name, periodic):
+def test_failure_intervals_match_scan(name, periodic):
     amp, wn = PROFILES[name]
     w = np.arange(0.0025, 0.995, 0.0025)
     v = wavy.contact_validity(w, amp, wn, periodic=periodic)
-    P, G = SHEET_P[(name, periodic)], SHEET_G[(name, periodic)]
+    P, G = SCAN_P[(name, periodic)], SCAN_G[(name, periodic)]
     checked = 0
     for i, wi in enumerate(w):
         if _inside(wi, P):
@@ -72,7 +73,7 @@ def test_johnson_says_valid_but_exact_test_fails(name, w, periodic):
     assert chi < 1.0
     v = wavy.contact_validity(w, amp, wn, periodic=periodic)
     assert not v["ok"]
-    # tensile pocket near the edge, never at the centre (sheet s. 6)
+    # tensile pocket near the edge, never at the centre, docs/theory/wavy.md (W20)
     if not v["pressure_ok"]:
         assert v["min_phi_over_pstar"] < 0 and v["x_of_min_phi_over_a"] > 0.75
 
@@ -86,8 +87,9 @@ def test_johnson_says_invalid_but_contact_is_continuous(periodic):
     assert wavy.continuous_contact(w, amp, wn, periodic=periodic).all()
 
 
-def test_johnson_parameter_ranges_of_sheet():
-    """Sheet s. 6: for 2a/lambda_1 >= 0.05, chi_2 in [0.14, 0.80] and chi_3 in [0.04, 0.22]."""
+def test_johnson_parameter_ranges():
+    """docs/theory/wavy.md (W21): for 2a/lambda_1 >= 0.05, chi_2 in [0.14, 0.80] and chi_3 in [0.04, 0.22]
+    (the printed definition would give n_i/2 times these: 5.5x and 20x)."""
     w = np.arange(0.05, 0.9951, 0.0025)
     for periodic in (True, False):
         chi = wavy.johnson_parameter(w, *PROFILES["f3"], periodic=periodic, per_harmonic=True)
@@ -98,7 +100,7 @@ def test_johnson_parameter_ranges_of_sheet():
 
 @pytest.mark.parametrize("periodic", [True, False])
 def test_edge_tensile_exactly_where_mean_pressure_falls(periodic):
-    """K = c(a) dW/da with c > 0 (sheet s. 6): the sign of the edge coefficient from the series
+    """K = c(a) dW/da with c > 0, docs/theory/wavy.md (W19): the sign of the edge coefficient from the series
     equals the sign of d p_inf/da from the closed forms."""
     amp, wn = PROFILES["f3"]
     w = np.arange(0.02, 0.99, 0.01)
@@ -161,12 +163,12 @@ def test_gap_outside_against_bruteforce(name, w, periodic):
     assert abs(v["min_gap_over_Delta1"] - gm) < 1e-11
 
 
-def test_sheet_gap_interval_f3_periodic_has_a_hole():
-    """Sheet s. 6 lists (G) failing on [0.6205, 0.6903] for f3-periodic.  Our exact test finds a
+def test_gap_interval_f3_periodic_has_a_hole():
+    """The scan lists (G) failing on [0.6205, 0.6903] for f3-periodic.  Our exact test finds a
     hole: the tensile edge closes at 2a/lambda_1 ~ 0.6434 (edge coefficient K turns positive) and the
-    first outside ripple crest (x/a ~ 1.077) touches only from ~ 0.6454.  At 0.645 -- one of the sheet's
+    first outside ripple crest (x/a ~ 1.077) touches only from ~ 0.6454.  At 0.645 -- one of the scan's
     scan points -- the brute-force gap (eq. 5, ln|2 sin| kernel) is positive everywhere outside.
-    (P) fails there anyway, so the overall validity flag agrees with the sheet."""
+    (P) fails there anyway, so the overall validity flag agrees with the scan; docs/theory/wavy.md (W20)."""
     amp, wn = PROFILES["f3"]
     w = 0.645
     v = wavy.contact_validity(w, amp, wn, periodic=True)
@@ -180,6 +182,34 @@ def test_sheet_gap_interval_f3_periodic_has_a_hole():
     assert 1e-5 < gb[crest].min() < 1e-4          # the crest clears by ~5e-5 Delta_1
     g, _ = wavy.separation(t, w, amp, wn, periodic=True)
     np.testing.assert_allclose(g, gb, atol=1e-11)
-    # neighbouring scan points do fail (G), as in the sheet
+    # neighbouring scan points do fail (G), as in the scan
     v2 = wavy.contact_validity([0.6425, 0.6475], amp, wn, periodic=True)
     assert not v2["gap_ok"].any()
+
+
+def test_johnson_parameter_is_ripple_amplitude_over_hertz_peak():
+    """docs/theory/wavy.md (W21) from its two ingredients, each obtained by another route:
+    the pressure ripple of a flattened harmonic, p*_i = (Delta_i/Delta_1) n_i p*, is the amplitude
+    p(0) - p_inf of the periodic base wave near full contact (Westergaard: 2 sin(a/2) - sin^2(a/2) -> 1);
+    the carrier pressure p_h = 2 W/(pi a), W = lambda_1 p_inf, is the Hertz peak, i.e. p(0) of a narrow
+    single bump.  The printed chi = pi E Delta_i/(2 p_h lambda_i) with p_h = 2 p_inf lambda_i/(pi a) is
+    n_i/2 times this (5.5x for n = 11)."""
+    one = dict(amplitudes=[1.0], wavenumbers=[1])
+    p0, _ = wavy.peak_pressure(0.99, **one, periodic=True, rtol=1e-13)
+    ripple = p0 - wavy.mean_pressure(0.99, **one, periodic=True)       # p*_1/p*, -> 1
+    assert abs(ripple - 1.0) < 1e-7
+    w_small = 0.002                                                   # Hertz: p(0) = 2 W/(pi a)
+    a_small = np.pi * w_small
+    p0_small, _ = wavy.peak_pressure(w_small, **one, periodic=False)
+    hertz = 2 * (2 * np.pi * wavy.mean_pressure(w_small, **one, periodic=False)) / (np.pi * a_small)
+    assert abs(p0_small / hertz - 1) < 1e-5
+    amp, wn = PROFILES["f3"]
+    w = np.array([0.05, 0.3, 0.6])
+    a = np.pi * w
+    ratio, n = np.array(amp) / amp[0], np.array(wn)
+    for periodic in (True, False):
+        p_h = 2 * (2 * np.pi * wavy.mean_pressure(w, amp, wn, periodic=periodic)) / (np.pi * a)
+        expected = ratio[None, :] * n[None, :] * ripple / p_h[:, None]
+        chi = wavy.johnson_parameter(w, amp, wn, periodic=periodic, per_harmonic=True)
+        np.testing.assert_allclose(chi, expected, rtol=1e-7)
+        np.testing.assert_array_equal(wavy.johnson_parameter(w, amp, wn, periodic=periodic), chi[:, 1:].max(axis=1))

@@ -1,8 +1,8 @@
 """Multisinusoidal wavy surface pressed on an elastic half-plane (plane strain, frictionless).
 
 Tsukanov, I. Yu. (2018) "Partial contact of a rigid multisinusoidal wavy surface with an elastic
-half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467; equations as
-cleaned and verified in shared/formulas/seed002/formulas.md.  Pure NumPy/SciPy: arrays in,
+half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467; equations, stable
+forms and errata in docs/theory/wavy.md (W1)-(W29).  Pure NumPy/SciPy: arrays in,
 arrays out, no state.  See ``api`` for the common arguments and normalisation
 (p* = pi E* Delta_1/lambda_1, E* = E/(1 - nu^2); lengths in Delta_1; x in units of a).
 """

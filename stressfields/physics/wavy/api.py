@@ -1,8 +1,8 @@
 """Public kernels of the wavy (multisinusoidal) contact family.
 
 Tsukanov, I. Yu. (2018) "Partial contact of a rigid multisinusoidal wavy surface with an elastic
-half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467, as cleaned and
-verified in shared/formulas/seed002/formulas.md ("the sheet").  Plane strain, frictionless, rigid
+half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467, with the equations,
+stable forms and errata of docs/theory/wavy.md (W1).  Plane strain, frictionless, rigid
 indenter, prescribed contact half-width a, continuous contact.
 
 Common arguments
@@ -16,14 +16,14 @@ n_harmonics : optional int array, use the first N rows of the table (default: al
 rtol : series tolerance relative to sum_i |weight_i| ||C_i||_2 (see ``series``).
 max_terms : cap on the number of series terms (per contact width).
 
-All array arguments broadcast together.  Normalisation (sheet section 1): p* = pi E* Delta_1/lambda_1
+All array arguments broadcast together.  Normalisation, docs/theory/wavy.md (W2): p* = pi E* Delta_1/lambda_1
 with E* = E/(1 - nu^2); lengths u_z, gap in units of Delta_1; x in units of a.
 Series quantities return ``(value, info)`` with info = {"n_terms", "error_estimate",
 "converged"} broadcast to the value's shape: n_terms sine terms were summed (highest order
 2*n_terms - 1); error_estimate (in the value's units) = bound of the truncated tail + an estimate
-of rounding; converged = error_estimate <= rtol * scale.  When rtol cannot be met (2a/lambda_1 -> 1
-with the length capped at max_terms, or rtol below rounding) the best value is returned with
-converged = False and the honest estimate.
+of rounding; converged = error_estimate <= rtol * scale (docs/theory/wavy.md (W22), (W23)).
+When rtol cannot be met (2a/lambda_1 -> 1 with the length capped at max_terms, or rtol below
+rounding) the best value is returned with converged = False and the honest estimate.
 """
 
 from __future__ import annotations
@@ -84,15 +84,17 @@ def pressure(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic:
              n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS, substitute=False):
     """Contact pressure p(x)/p*, zero for |x| > a.
 
-    Periodic: eqs. (10)-(12) with the DCT coefficients of the sheet (A.5-A.7); non-periodic:
-    Bessel series eq. (14).  Combined with E* (not the printed E/(2(1-nu^2))).
+    Periodic: eqs. (10)-(12) with coefficients by DCT (docs/theory/wavy.md (W6), (W7)); non-periodic:
+    Bessel series eq. (14), docs/theory/wavy.md (W8).  Combined with E* (not the printed
+    E/(2(1-nu^2))), docs/theory/wavy.md (W5), into the sine series of docs/theory/wavy.md (W9).
     Returns (p_over_pstar, info).
 
     ``substitute=True`` (periodic only) evaluates the non-periodic series (eq. 14: ~30 ns cheaper
     per point, a third) for every contact whose periodic correction (``periodic_correction``) plus
     the non-periodic series error stays within the periodic series' own tolerance, rtol * scale,
     and that has at least ``SUBSTITUTE_MIN_POINTS`` points inside it (the test costs ~2 ms per
-    contact); info then has "substituted" (bool), and error_estimate includes the correction there.
+    contact); info then has "substituted" (bool), and error_estimate includes the correction there
+    (docs/theory/wavy.md (W26)).
     """
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     t = np.abs(np.asarray(x_over_a, dtype=float))
@@ -124,7 +126,8 @@ SUBSTITUTE_MIN_POINTS = 100_000
 
 def periodic_correction(two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics=None, rtol=DEFAULT_RTOL,
                         max_terms=DEFAULT_MAX_TERMS):
-    """Bound on max over |x| <= a of |p_periodic(x) - p_nonperiodic(x)|/p* for the same contact.
+    """Bound on max over |x| <= a of |p_periodic(x) - p_nonperiodic(x)|/p* for the same contact,
+    docs/theory/wavy.md (W26).
 
     The two solutions differ by the smooth part of the periodic kernel, (1/2)cot(y/2) - 1/y =
     -y/12 - ..., so the difference of phi = p/sqrt(1 - (x/a)^2) is smooth: it is interpolated on
@@ -184,7 +187,8 @@ def pressure_shape(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, per
     """phi = p(x)/sqrt(1 - (x/a)^2) / p*, defined for |x/a| <= 1 only (ValueError otherwise).
 
     At |x| = a it is the edge coefficient K/p*: nonperiodic K = E* sum_i Delta_i n_i (a n_i/2) J_0(a n_i),
-    periodic K = sqrt(a/(2 tan(a/2))) dW/da / pi (sheet section 6).  Its sign is test (P).
+    periodic K = sqrt(a/(2 tan(a/2))) dW/da / pi, docs/theory/wavy.md (W19).  Its sign is test (P) of
+    docs/theory/wavy.md (W20).
     info["error_estimate"] bounds the series error of phi.
     """
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms, weighted=True)
@@ -202,10 +206,12 @@ def pressure_shape(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, per
 
 
 def mean_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None):
-    """Mean (nominal) pressure p_inf/p*, p_inf = (1/lambda_1) int_{-a}^{a} p dx (eq. 6).
+    """Mean (nominal) pressure p_inf/p*, p_inf = (1/lambda_1) int_{-a}^{a} p dx (eq. 6),
+    docs/theory/wavy.md (W10).
 
-    Closed forms, no series: non-periodic eq. (16); periodic the Legendre form of the sheet
-    (section 3).  For a single indenter p_inf is the load per unit length divided by lambda_1.
+    Closed forms, no series: non-periodic eq. (16), docs/theory/wavy.md (W12); periodic the Legendre
+    form docs/theory/wavy.md (W11) (not in the paper).  For a single indenter p_inf is the load per
+    unit length divided by lambda_1.
     """
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, 1.0, 16, build=False)
     return c.mod.mean_pressure(c.a_in, c.dr, c.n, c.N_in)
@@ -213,8 +219,8 @@ def mean_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool
 
 def peak_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                   n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
-    """p(0)/p*, the paper's p_max (eq. 21 for the non-periodic problem): sum_m (-1)^m D_m.
-    Returns (value, info)."""
+    """p(0)/p*, the paper's p_max (eq. 21 for the non-periodic problem): sum_m (-1)^m D_m,
+    docs/theory/wavy.md (W13).  Returns (value, info)."""
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     t = c.table
     sign = np.where(np.arange(t.D.shape[1]) % 2 == 0, 1.0, -1.0)
@@ -226,8 +232,9 @@ def max_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                  n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
     """Global maximum of p over [-a, a]: (p_max/p*, x/a >= 0 where it occurs, info).
 
-    p is even; grid + golden-section search of the truncated series (the sheet finds it at
-    x = 0 in all its reference cases, but not in general for rough profiles)."""
+    p is even; grid + golden-section search of the truncated series, docs/theory/wavy.md (W14)
+    (it is at x = 0 in all the reference cases of tests/data, but not in general for rough
+    profiles)."""
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     rows = np.unique(c.row)
     t_r, v_r = validity.extreme_over_contact(c.table, c.mod, rows, shape=False)
@@ -239,7 +246,8 @@ def max_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
 
 def approach(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None):
     """delta/Delta_1 = u_z(0)/Delta_1 with C = 0 in eq. (5) (datum as in ``displacement``).
-    Closed forms from Betti's theorem (see periodic.approach, nonperiodic.approach)."""
+    Closed forms from Betti's theorem, docs/theory/wavy.md (W16) (see periodic.approach,
+    nonperiodic.approach)."""
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, 1.0, 16, build=False)
     return c.mod.approach(c.a_in, c.dr, c.n, c.N_in)
 
@@ -264,7 +272,8 @@ def _reduced(c, x_over_a):
 def separation(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
     """Gap after loading, (g(x) + u_z(x) - u_z(0))/Delta_1: 0 inside the contact; negative
-    values outside mean the rigid profile would penetrate the surface (test (G)).
+    values outside mean the rigid profile would penetrate the surface (test (G)),
+    docs/theory/wavy.md (W18).
 
     Non-periodic: closed form from integrating eq. (14)'s Cauchy transform off the cut,
     (u_z(x) - u_z(a))/Delta_1 = -a sum_m D_m G_{2m+1}(x/a) (validity.gap_outside);
@@ -286,12 +295,13 @@ def separation(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodi
 
 def displacement(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                  n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
-    """Surface displacement u_z(x)/Delta_1, positive into the body, eq. (5) with C = 0.
+    """Surface displacement u_z(x)/Delta_1, positive into the body, eq. (5) with C = 0,
+    docs/theory/wavy.md (W15).
 
     Datum (where the constant is fixed): periodic kernel ln|2 sin((x - xi)/2)|, so u_z has zero
     mean over one period; non-periodic kernel ln|x - xi| with lengths in units where
     lambda_1 = 2 pi (x = 2 pi x_phys/lambda_1), i.e. u_z = -(2/(pi E*)) int p(xi) ln|x - xi| dxi.
-    These match reference_points.json (uz0_over_Delta1).  Inside the contact
+    These match tests/data/wavy_tsukanov.json (uz0_over_Delta1).  Inside the contact
     u_z = u_z(0) - g(x) (closed form); outside u_z = u_z(0) - g(x) + gap(x) (see ``separation``).
     Returns (uz_over_Delta1, info).
     """
@@ -308,7 +318,8 @@ def displacement(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, perio
 
 
 def initial_gap(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics=None):
-    """g(x)/Delta_1 = sum_{i<N} (Delta_i/Delta_1)(1 - cos n_i x), x = a * x_over_a (eq. 3)."""
+    """g(x)/Delta_1 = sum_{i<N} (Delta_i/Delta_1)(1 - cos n_i x), x = a * x_over_a (eq. 3),
+    docs/theory/wavy.md (W1)."""
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, True, n_harmonics, 1.0, 16, build=False)
     x = np.asarray(x_over_a, dtype=float) * c.a_in
     return _profile.gap(x, c.dr, c.n, np.broadcast_to(c.N_in, np.broadcast(x, c.N_in).shape))
@@ -318,7 +329,7 @@ def initial_gap(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harm
 
 def contact_validity(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                      n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS, atol=1e-10):
-    """Exact admissibility of the continuous-contact solution (sheet section 6).
+    """Exact admissibility of the continuous-contact solution, docs/theory/wavy.md (W20).
 
     Returns a dict of arrays (shape of broadcast(a, N)):
       ok                    -- pressure_ok & gap_ok
@@ -349,7 +360,7 @@ def contact_validity(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
 
 def continuous_contact(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                        n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS, atol=1e-10):
-    """True where the continuous-contact solution is physical: (P) and (G) of the sheet, section 6.
+    """True where the continuous-contact solution is physical: (P) and (G) of docs/theory/wavy.md (W20).
     Boolean array of shape broadcast(two_a_over_lambda1, n_harmonics)."""
     return contact_validity(two_a_over_lambda1, amplitudes, wavenumbers, periodic=periodic,
                             n_harmonics=n_harmonics, rtol=rtol, max_terms=max_terms, atol=atol)["ok"]
@@ -357,7 +368,7 @@ def continuous_contact(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic:
 
 def johnson_parameter(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None,
                       per_harmonic=False):
-    """Johnson parameter as corrected in the sheet (section 6):
+    """Johnson parameter as corrected in docs/theory/wavy.md (W21) (see its errata):
 
         chi_i = pi E* Delta_i / (lambda_i p_h),  p_h = 2 p_inf lambda_1/(pi a)  (Hertz peak)
               = |Delta_i/Delta_1| n_i a / (4 p_inf/p*)     (a in lambda_1 = 2 pi units),
@@ -383,13 +394,13 @@ def johnson_parameter(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: 
 def approximate_pressure_eq18(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics=None,
                               n_terms=None):
     """The paper's approximation (18), non-periodic: NOT accurate (exact only at x = 0; errors up
-    to 0.9 Delta n, sheet section 4).  For benchmarks of its error only; p/p*, 0 for |x| > a."""
+    to 0.9 Delta n, docs/theory/wavy.md (W29)).  For benchmarks of its error only; p/p*, 0 for |x| > a."""
     return _approximate(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, n_harmonics, 18, n_terms)
 
 
 def approximate_pressure_eq20(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics=None):
-    """The paper's approximation (20) as reconstructed in the sheet, non-periodic: NOT accurate
-    (errors 0.15-0.9 Delta n even at x = 0).  For benchmarks of its error only; p/p*."""
+    """The paper's approximation (20) as read in docs/theory/wavy.md (W29), non-periodic: NOT
+    accurate (errors 0.15-0.9 Delta n even at x = 0).  For benchmarks of its error only; p/p*."""
     return _approximate(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, n_harmonics, 20, None)
 
 

@@ -1,13 +1,13 @@
 """Non-periodic problem (single indenter, Cauchy kernel).
 
-Tsukanov (2018), Adv. Tribology 8431467, eqs. (2), (13)-(16), (21), as cleaned in the formula
-sheet seed002 (section 4): per-harmonic pressure, s = x/a = cos(theta),
+Tsukanov (2018), Adv. Tribology 8431467, eqs. (2), (13)-(16), (21), as corrected in
+docs/theory/wavy.md (W4), (W8): per-harmonic pressure, s = x/a = cos(theta),
 
     p_i(x) = Delta_i n_i sum_j (-1)^j J_{2j+1}(a n_i) sin((2j+1) theta)            (eq. 14)
 
-combined with E* = E/(1-nu^2).  Bessel functions come from scipy's ``jv`` (the sheet warns that
-forward recurrence is unstable for order > argument).  Displacement: kernel ln|x - xi| with
-lengths in units where lambda_1 = 2 pi and C = 0 in eq. (5).
+combined with E* = E/(1-nu^2), docs/theory/wavy.md (W5).  Bessel functions come from scipy's ``jv``
+(forward recurrence is unstable for order > argument).  Displacement: kernel ln|x - xi| with
+lengths in units where lambda_1 = 2 pi and C = 0 in eq. (5), docs/theory/wavy.md (W15).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ COEFFICIENT_NOISE = False
 
 
 def window_terms(a, n_max, rtol):
-    """Terms expected for rtol: sheet section 9, K ~ z/2 + 2 z^(1/3) + 8 at 1e-10, z = a n
+    """Terms expected for rtol, docs/theory/wavy.md (W24): K ~ z/2 + 2 z^(1/3) + 8 at 1e-10, z = a n
     (the super-exponential cut-off past order z); the additive part is scaled with ln(1/rtol)."""
     z = a * n_max
     return 0.5 * z + (2.0 * np.cbrt(z) + 8.0) * max(1.0, np.log(1.0 / rtol) / np.log(1e10))
@@ -49,7 +49,8 @@ def shape_ratio(t, a=None):
 
 
 def mean_pressure(a, delta_ratio, n, N):
-    """p_inf/p* = (1/2) sum_{i<N} (Delta_i/Delta_1) a n_i J_1(a n_i)  (eq. 16 times 2/Delta_1)."""
+    """p_inf/p* = (1/2) sum_{i<N} (Delta_i/Delta_1) a n_i J_1(a n_i)  (eq. 16 times 2/Delta_1),
+    docs/theory/wavy.md (W12)."""
     out = np.zeros(np.broadcast(a, N).shape)
     for i in range(len(n)):
         z = a * n[i]
@@ -58,7 +59,7 @@ def mean_pressure(a, delta_ratio, n, N):
 
 
 def approach(a, delta_ratio, n, N):
-    """u_z(0)/Delta_1 with kernel ln|x - xi| (lambda_1 = 2 pi units) and C = 0.
+    """u_z(0)/Delta_1 with kernel ln|x - xi| (lambda_1 = 2 pi units) and C = 0, docs/theory/wavy.md (W16).
 
     Betti's theorem with the flat punch (p_0 = 1/(pi sqrt(a^2-x^2)) per unit load, whose
     displacement is -2 ln(a/2)/(pi E*) and int p_0 cos(n x) dx = J_0(a n)) gives

@@ -1,14 +1,14 @@
 """Periodic problem (period lambda_1 = 2 pi, Hilbert/cot kernel).
 
-Tsukanov (2018), Adv. Tribology 8431467, eqs. (1), (5)-(12) and (A.1)-(A.10), as cleaned in the
-formula sheet seed002 (sections 2-3): per-harmonic pressure
+Tsukanov (2018), Adv. Tribology 8431467, eqs. (1), (5)-(12) and (A.1)-(A.10), as corrected in
+docs/theory/wavy.md (W3), (W6), (W7): per-harmonic pressure
 
     p_i(x) = Delta_i n_i sum_j A_ij sin(j theta),   cos(theta) = r = tan(x/2)/tan(a/2),
     A_ij = (1/pi) int_0^pi sin(2 n_i arctan(tan(a/2) cos t)) cos(j t) dt   (eq. 11-12),
 
-combined with the corrected factor E* = E/(1-nu^2) (sheet section 0).  Displacements use the
-periodic kernel ln|2 sin((x-xi)/2)| with C = 0 in eq. (5) (sheet section 2): its datum is
-zero mean displacement over one period.
+combined with the corrected factor E* = E/(1-nu^2), docs/theory/wavy.md (W5).  Displacements use
+the periodic kernel ln|2 sin((x-xi)/2)| with C = 0 in eq. (5), docs/theory/wavy.md (W15): its
+datum is zero mean displacement over one period.
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ COEFFICIENT_NOISE = True
 
 
 def window_terms(a, n_max, rtol):
-    """Terms (odd Chebyshev indices) expected for rtol: sheet section 9,
+    """Terms (odd Chebyshev indices) expected for rtol, docs/theory/wavy.md (W24):
     J ~ 1.2 [2 n tan(a/2) + ln(1/rtol) / ln cot(a/4)], i.e. about J/2 + 1 odd terms."""
     J = 1.2 * (2.0 * n_max * np.tan(0.5 * a) + np.log(1.0 / rtol) / np.log(1.0 / np.tan(0.25 * a)))
     return 0.5 * J + 1.0
@@ -40,7 +40,7 @@ def coefficients(a, n, L):
 
     One DCT-II of M = 4L Gauss-Chebyshev nodes per (a, harmonic): indices up to 2L-1 are then
     aliased only by indices >= 6L, negligible where the series has converged.  phi_i is used
-    in its exact form sin(2 n arctan(alpha s))/2 (sheet eq. A.5), not through U_{n-1}.
+    in its exact form sin(2 n arctan(alpha s))/2 (eq. A.5), docs/theory/wavy.md (W7), not through U_{n-1}.
     """
     M = 4 * L
     theta = (2.0 * np.arange(M) + 1.0) * np.pi / (2.0 * M)
@@ -51,7 +51,8 @@ def coefficients(a, n, L):
 
 
 def _one_minus_plus_r(t, a):
-    """1 - r and 1 + r, r = tan(x/2)/tan(a/2), x = a t, without cancellation at r -> +-1 (sheet s. 3)."""
+    """1 - r and 1 + r, r = tan(x/2)/tan(a/2), x = a t, without cancellation at r -> +-1,
+    docs/theory/wavy.md (W6)."""
     den = np.sin(0.5 * a) * np.cos(0.5 * a * t)
     return np.sin(0.5 * a * (1.0 - t)) / den, np.sin(0.5 * a * (1.0 + t)) / den
 
@@ -79,8 +80,8 @@ def shape_ratio(t, a):
 def mean_pressure(a, delta_ratio, n, N):
     """p_inf/p* = (1/2) sum_{i<N} (Delta_i/Delta_1) n_i [P_{n_i-1}(cos a) - P_{n_i}(cos a)].
 
-    Closed form of eq. (6) found and verified in the formula sheet (section 3, 'new'); the
-    paper itself integrates the series numerically.  n = 1 gives Westergaard's sin^2(a/2).
+    Closed form of eq. (6), docs/theory/wavy.md (W11) (not in the paper, which integrates the
+    series numerically).  n = 1 gives Westergaard's sin^2(a/2).
     """
     c = np.cos(a)
     out = np.zeros(np.broadcast(a, N).shape)
@@ -91,16 +92,16 @@ def mean_pressure(a, delta_ratio, n, N):
 
 
 def approach(a, delta_ratio, n, N):
-    """u_z(0)/Delta_1 (= approach delta) with the ln|2 sin| kernel and C = 0.
+    """u_z(0)/Delta_1 (= approach delta) with the ln|2 sin| kernel and C = 0, docs/theory/wavy.md (W16).
 
     From Betti's reciprocal theorem with the periodic flat punch (derived for this package,
-    verified against the sheet's independent quadrature, reference_points.json):
+    verified against independent quadrature, tests/data/wavy_tsukanov.json):
     delta = W delta_0(a) + int p_0 g dx with delta_0 = -2 ln sin(a/2)/(pi E*) per unit load and
     int p_0 cos(n x) dx = [P_n + P_{n-1}](cos a)/2, hence
 
         u_z(0)/Delta_1 = sum_i (Delta_i/Delta_1) { -n_i ln sin(a/2) [P_{n-1} - P_n] + 1 - [P_n + P_{n-1}]/2 }.
 
-    n = 1 gives Westergaard's Delta sin^2(a/2) (1 - 2 ln sin(a/2)) (sheet section 5).
+    n = 1 gives Westergaard's Delta sin^2(a/2) (1 - 2 ln sin(a/2)), docs/theory/wavy.md (W27).
     """
     c = np.cos(a)
     lns = np.log(np.sin(0.5 * a))
@@ -120,7 +121,8 @@ def _w_of_x(x, a):
 
 
 class OutsideTable:
-    """gap(x)/Delta_1 = int_a^x [g'(y) + u_z'(y)] dy / Delta_1 for a < x <= pi, every table row.
+    """gap(x)/Delta_1 = int_a^x [g'(y) + u_z'(y)] dy / Delta_1 for a < x <= pi, every table row,
+    docs/theory/wavy.md (W18).
 
     Outside the contact u_z'/Delta_1 = -sum_m D_m w^(2m+1) (the Cauchy transform of
     sqrt(1-s^2) U_{j-1}(s) is w^j off the cut; inside it is T_j, which gives back -g').

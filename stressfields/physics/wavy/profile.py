@@ -2,7 +2,7 @@
 
 Tsukanov (2018), "Partial contact of a rigid multisinusoidal wavy surface with an elastic
 half-plane", Adv. Tribology 2018, 8431467 (doi:10.1155/2018/8431467), eq. (3), with the
-conventions of the verified formula sheet (shared/formulas/seed002, section 1):
+conventions of docs/theory/wavy.md (W1), (W2):
 
 * lengths are scaled so that the longest wavelength is lambda_1 = 2*pi (n_1 = 1);
 * initial gap g(x) = sum_i Delta_i (1 - cos n_i x), all harmonics in phase at x = 0;
@@ -38,7 +38,8 @@ def harmonic_table(amplitudes, wavenumbers):
 
 
 def contact_angle(two_a_over_lambda1):
-    """a in the sheet's units (lambda_1 = 2 pi): a = pi * (2a/lambda_1); checks 0 < 2a/lambda_1 < 1."""
+    """a in the units of docs/theory/wavy.md (W2) (lambda_1 = 2 pi): a = pi * (2a/lambda_1); checks
+    0 < 2a/lambda_1 < 1."""
     w = np.asarray(two_a_over_lambda1, dtype=float)
     if np.any(~np.isfinite(w)) or np.any(w <= 0.0) or np.any(w >= 1.0):
         raise ValueError("two_a_over_lambda1 must lie in the open interval (0, 1) "
@@ -62,7 +63,8 @@ def harmonic_counts(n_harmonics, n_rows):
 
 
 def gap(x, delta_ratio, n, N):
-    """Initial gap g(x)/Delta_1 = sum_{i<N} (Delta_i/Delta_1)(1 - cos n_i x), eq. (3).
+    """Initial gap g(x)/Delta_1 = sum_{i<N} (Delta_i/Delta_1)(1 - cos n_i x), eq. (3),
+    docs/theory/wavy.md (W1).
 
     ``x`` (lambda_1 = 2 pi units) and ``N`` are arrays of one shape; harmonics are looped
     over (a table has few rows).  1 - cos is written as 2 sin^2 to keep small gaps exact.

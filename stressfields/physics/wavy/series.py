@@ -1,7 +1,7 @@
 """Truncated sine series shared by the periodic and non-periodic solutions.
 
-Both of Tsukanov's (2018) solutions have the same form once harmonics are combined
-(formula sheet seed002, sections 3-4):
+Both of Tsukanov's (2018) solutions have the same form once harmonics are combined,
+docs/theory/wavy.md (W9):
 
     p(x)/p* = sum_{m>=0} D_m sin((2m+1) theta),     D_m = 2 sum_i (Delta_i/Delta_1) n_i C_im,
 
@@ -9,19 +9,19 @@ Both of Tsukanov's (2018) solutions have the same form once harmonics are combin
   phi_i(s) = sin(2 n_i arctan(s tan(a/2)))/2, and cos(theta) = tan(x/2)/tan(a/2);
 * non-periodic, eq. (14): C_im = (-1)^m J_{2m+1}(a n_i), and cos(theta) = x/a.
 
-(The factor 2 is E*/p* with p* = E* Delta_1/2: the sheet's corrected combining factor E*.)
+(The factor 2 is E*/p* with p* = E* Delta_1/2: the corrected combining factor E*, docs/theory/wavy.md (W5).)
 Only the coefficients and the map x -> theta differ, so truncation, error estimates and
 evaluation live here once.
 
 Truncation.  For each contact angle the coefficients are computed on a window of L terms
-(L from the sheet's section-9 laws), and the number of terms K kept is the smallest with
+(L from the laws of docs/theory/wavy.md (W24)), and the number of terms K kept is the smallest with
 
     tail(K) = sum_{m>=K} sum_i |w_i C_im|  (+ geometric extrapolation beyond the window)
             <= rtol * sum_i w_i ||C_i||_2 .
 
 tail(K) bounds |p - p_K|/p* pointwise (|sin| <= 1); plus rounding terms (coefficient noise,
 summation) it is returned as the error estimate, and ``converged`` means the estimate is
-<= rtol * scale.
+<= rtol * scale: docs/theory/wavy.md (W22), (W23).
 When the tail is not small inside the window, the window is doubled, up to ``max_terms``;
 past that the row is returned with ``converged = False`` and the (large) honest estimate.
 """

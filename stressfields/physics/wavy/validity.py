@@ -1,9 +1,9 @@
 """Extrema over the contact and over the gap outside it: global p_max, the exact
 continuous-contact test, and the Johnson parameter.
 
-Formula sheet seed002, section 6 (Tsukanov 2018 uses chi < 1, which the sheet shows is neither
-necessary nor sufficient).  The continuous-contact (bounded, fixed-a) solution is the physical
-one iff
+docs/theory/wavy.md (W20), (W21) (Tsukanov 2018 uses chi < 1, which is neither necessary nor
+sufficient: see the errata there).  The continuous-contact (bounded, fixed-a) solution is the
+physical one iff
   (P) phi(t) = p(a t)/sqrt(1 - t^2) >= 0 on [-1, 1] (edge coefficient included), and
   (G) gap(x) = g(x) + u_z(x) - u_z(0) >= 0 for a < |x| <= lambda_1/2 (for the non-periodic
       indenter: the single bump |x| <= pi).
@@ -112,7 +112,8 @@ def extreme_over_contact(table, mod, rows, *, shape):
 
 
 def gap_outside(table, outside, rows, tau, delta_ratio, n):
-    """gap(x)/Delta_1 = (g + u_z - u_z(0))/Delta_1 at x = a + (pi - a) tau^2 > a, table rows ``rows``.
+    """gap(x)/Delta_1 = (g + u_z - u_z(0))/Delta_1 at x = a + (pi - a) tau^2 > a, table rows ``rows``,
+    docs/theory/wavy.md (W18).
 
     Periodic: ``outside`` (periodic.OutsideTable).  Non-periodic: closed form; outside the cut
     the Cauchy transform of sqrt(1-s^2) U_{2m}(s) is w^(2m+1), w = t - sqrt(t^2-1), whose
