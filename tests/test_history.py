@@ -2,9 +2,10 @@
 
 Independent routes used here: a brute-force simulation of every MDR spring as a stop operator
 (clip by the Coulomb limit after each increment), the Mindlin–Deresiewicz closed forms derived in
-the comments below, the cone pressure p(r; c) = p_m arccosh(c/r) (sheet eq. 36) for the traction
-of the sheet's verification case, and a direct scipy quadrature of eq. (28) with the spring slope
-derived by hand.  Nothing is copied from the code under test.
+the comments below, the cone pressure p(r; c) = p_m arccosh(c/r) (paper eq. 36,
+docs/theory/axisymmetric.md (A20)) for the Mindlin–Deresiewicz traction (A74) of the paper's figure
+case reversed, and a direct scipy quadrature of eq. (28) with the spring slope derived by hand.
+Nothing is copied from the code under test.
 """
 import math
 
@@ -181,9 +182,9 @@ def test_monotonic_equals_cattaneo_mindlin(name, method, u):
             sign * (1 - profile.normal_force(c) / profile.normal_force(1.0)), abs=1e-15)
 
 
-# -- the sheet's verification case: cone, nu = 0.3, mu = 0.4, load to delta/4, reverse by 0.3 delta ----
+# -- the paper's figure case reversed: cone, nu = 0.3, mu = 0.4, load to delta/4, reverse by 0.3 delta --
 
-def test_sheet_case_cone_reversal():
+def test_paper_case_cone_reversal():
     nu, mu = 0.3, 0.4
     cone = ax.cone(1.0)                                  # a = 1, delta = pi/2, p_m = E*/2
     k = kappa(nu)

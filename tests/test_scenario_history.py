@@ -114,7 +114,7 @@ def test_cone_loop_recipe_turning_points():
         assert np.array_equal(v[0], v[2], equal_nan=True) and np.array_equal(v[0], v[4], equal_nan=True), name
     # step 3 is the mirror image of step 0 in the tangential part: sigma_xz changes sign
     np.testing.assert_allclose(ds.sigma_xz.values[3], -ds.sigma_xz.values[0], rtol=1e-14)
-    # step 1: Mindlin-Deresiewicz traction of the formula sheet, q = mu[(p_a - p_c1) - 2(p_a - p_cr)]
+    # step 1: Mindlin-Deresiewicz traction, docs/theory/axisymmetric.md (A74): q = mu[(p_a - p_c1) - 2(p_a - p_cr)]
     nu, mu = 0.3, 0.4
     c1, cr = 1 - kappa(nu) * 0.25 / mu, 1 - kappa(nu) * 0.15 / mu
     r = np.abs(ds.x.values)

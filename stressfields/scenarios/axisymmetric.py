@@ -4,7 +4,7 @@ hydrostatic-pressure gradient under normal and Cattaneo–Mindlin tangential loa
 Scenarios `conical`, `parabolic` and `axisymmetric` (power law, tabulated profile, flat punch).
 Normalised mode (default): x, y in units of the contact radius a, stresses divided by the mean
 contact pressure p_m = F_N / (pi a^2), dp/dz by p_m / a. Physical mode (the recipe gives E):
-metres, pascals.
+metres, pascals. Equations, conventions and errata: docs/theory/axisymmetric.md (A1)-(A64).
 """
 from __future__ import annotations
 

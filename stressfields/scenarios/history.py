@@ -2,9 +2,9 @@
 
 Scenario `axisymmetric_history`: the surface fields of the `axisymmetric` scenarios after every
 step of a tangential displacement history u_x0(t), from the MDR spring memory of eq. (27)-(28)
-(``physics.axisymmetric.history``), plus the tangential force, the stick radius, and the energy
-dissipated by friction.  Parameters, normalisation (p_m = F_N/(pi a^2)), physical mode (give E)
-and flags are those of the `axisymmetric` scenarios.
+(``physics.axisymmetric.history``; docs/theory/axisymmetric.md (A65)-(A77)), plus the tangential
+force, the stick radius, and the energy dissipated by friction.  Parameters, normalisation
+(p_m = F_N/(pi a^2)), physical mode (give E) and flags are those of the `axisymmetric` scenarios.
 
 The history is a sweep-free array parameter; its index is the dimension `step`.  `step` is an
 ordinary sweepable integer parameter; when the recipe does not give it, the scenario's check fills

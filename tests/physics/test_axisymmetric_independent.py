@@ -1,10 +1,12 @@
 """Independent routes, none of which uses the MDR integrals of the implementation:
 
 * the classical, MDR-free surface stresses sigma_rr = -p + (1-2nu)/r^2 int_0^r p s ds,
-  sigma_phiphi = -2 nu p - (1-2nu)/r^2 int_0^r p s ds (sheet §2, eq. 9), with the pressure and the
+  sigma_phiphi = -2 nu p - (1-2nu)/r^2 int_0^r p s ds (paper eq. 9 rewritten, docs/theory/axisymmetric.md
+  (A17)), with the pressure and the
   load integral by adaptive scipy quadrature;
 * the tangential in-plane stresses eq. (25), the shear traction eq. (24) and the normal dp/dz in
-  the convergent form (33a), C int_0^r (u g'(u) - r g'(r)) / (r^2-u^2)^(3/2) du, by scipy quad;
+  the convergent form docs/theory/axisymmetric.md (A27), C int_0^r (u g'(u) - r g'(r)) / (r^2-u^2)^(3/2) du,
+  by scipy quad;
 * the local identity dp/dz (tangential) = (2(1+nu)/3) dq/dx, by finite differences of the shear
   traction;
 * the Abel transform (12): f = r^4/(4R^3) gives g = (2/3) x^4/R^3, and the tabulated profile's
@@ -130,7 +132,7 @@ def test_tangential_stresses_by_scipy_quad(name, profile):
 @pytest.mark.parametrize("n", [0.5, 1.5, 2.5, 4.0])
 def test_normal_dpdz_convergent_form(n):
     """Power laws, including n < 1 (g'(0) infinite: the implementation uses the Hadamard finite
-    part) against C int_0^r (u g'(u) - r g'(r)) / (r^2 - u^2)^(3/2) du inside (eq. 33a) and
+    part) against C int_0^r (u g'(u) - r g'(r)) / (r^2 - u^2)^(3/2) du inside (docs/theory/axisymmetric.md (A27)) and
     C int_0^a u g'(u) / (r^2 - u^2)^(3/2) du outside (eq. 11)."""
     prof = ax.power_law(0.9, n)
     a, nu = 1.1, 0.3
@@ -173,7 +175,8 @@ def test_tangential_dpdz_is_local_derivative_of_traction(profile):
 
 
 def test_abel_transform_quartic():
-    """f = r^4/(4R^3) gives g = (2/3) x^4 / R^3 (sheet §2, eq. 12): the power law exactly, the
+    """f = r^4/(4R^3) gives g = (2/3) x^4 / R^3 (paper eq. 12, docs/theory/axisymmetric.md (A2)): the
+    power law exactly, the
     tabulated samples with the spline's O(h^4) interpolation error."""
     R = 1.3
     x = np.linspace(0.0, 1.0, 41)
@@ -211,3 +214,58 @@ def test_tabulated_abel_transform_is_exact_for_its_spline():
         fn = 2 * quad(lambda u: u * float(tab.dg(u)), 0, xv, points=[k for k in rt if 0 < k < xv] or None,
                       **QUAD)[0]
         assert float(tab.normal_force(xv)) == pytest.approx(fn, rel=1e-12)
+
+
+def _pressure_closed(profile, r, a):
+    """Contact pressure / E* in closed form: Hertz p = (2/(pi R)) sqrt(a^2 - r^2), cone
+    p = (tan(theta)/2) arccosh(a/r); other profiles by ``_p``."""
+    if profile.kind == "paraboloid":
+        return 2.0 / (math.pi * profile.R) * math.sqrt((a - r) * (a + r))
+    if profile.kind == "cone":
+        return 0.5 * profile.tan_theta * math.acosh(a / r)
+    return _p(profile, r, a)
+
+
+@pytest.mark.parametrize("name,profile,method", [("paraboloid", ax.paraboloid(1.7), "closed"),
+                                                 ("paraboloid", ax.paraboloid(1.7), "quadrature"),
+                                                 ("cone", ax.cone(0.6), "closed"),
+                                                 ("cone", ax.cone(0.6), "quadrature"),
+                                                 ("power_law_3", ax.power_law(0.8, 3.0), "quadrature"),
+                                                 ("power_law_1.5", ax.power_law(0.5, 1.5), "quadrature")])
+def test_normal_in_plane_stresses_near_axis(name, profile, method):
+    """r = 1e-7 a ... 1e-3 a: the normal-load stresses against the MDR-free route sigma_rr = -p +
+    (1-2nu)/r^2 int_0^r p s ds, sigma_phiphi = -2 nu p - (1-2nu)/r^2 int_0^r p s ds
+    (docs/theory/axisymmetric.md (A17)), load integral by scipy quad, to 1e-12 of p_m.  The printed
+    forms lose (a/r)^2 relative digits here: the load bracket of eq. (9), F_N - 2 E* int sqrt(u^2-r^2)
+    g' du (a difference of two O(F_N) numbers that is O(r^2)), the Hertz quotient
+    (a^3 - (a^2-r^2)^(3/2))/r^2 of eq. (1) and the cone's (a^2/r^2)(1 - sqrt(1 - r^2/a^2)) of eq. (36);
+    the code evaluates (A84), (A81)-(A82) and (A80) instead.  Checked below: the printed paraboloid bracket
+    misses by 7e-7 p_m at r = 1e-5 a, the printed cone quotient by 1e-2 p_m at r = 1e-7 a."""
+    a, nu = 1.2, 0.28
+    pm = float(ax.mean_pressure(a, profile))
+    r = np.array([1e-7, 1e-5, 1e-3])
+    phi = 0.7
+    x, y = r * math.cos(phi), r * math.sin(phi)
+    s = ax.surface_stress(x, y, a, 0.0, nu, 0.0, profile, method=method, rtol=1e-12)
+    c2, s2, cs = math.cos(phi) ** 2, math.sin(phi) ** 2, math.sin(phi) * math.cos(phi)
+    QUAD13 = dict(QUAD, epsrel=1e-13)
+    for i, ri in enumerate(r):
+        p = _pressure_closed(profile, ri, a)
+        load = quad(lambda t: _pressure_closed(profile, t, a) * t, 0.0, ri, **QUAD13)[0] / ri ** 2
+        srr = -p + (1 - 2 * nu) * load
+        sff = -2 * nu * p - (1 - 2 * nu) * load
+        expected = {"zz": -p, "xx": srr * c2 + sff * s2, "yy": srr * s2 + sff * c2, "xy": (srr - sff) * cs}
+        for k, v in expected.items():
+            assert abs(s[k][i] - v) / pm <= 1e-12 * max(1.0, abs(v) / pm), (name, ri, k, s[k][i], v)
+        if method != "closed":
+            continue
+        if name == "paraboloid" and ri == 1e-5:
+            R = profile.R
+            bracket = 4 * a ** 3 / (3 * R) - 4 / (3 * R) * (a * a - ri * ri) ** 1.5    # eq. (9), E* = 1
+            printed = -p + (1 - 2 * nu) / (2 * math.pi * ri ** 2) * bracket
+            assert abs(printed - srr) / pm > 1e-7
+        if name == "cone" and ri == 1e-7:
+            p0 = 0.5 * profile.tan_theta
+            Bp = a * a / ri ** 2 * (1 - math.sqrt(1 - ri * ri / (a * a)))             # eq. (36)
+            printed = p0 * (0.5 * (1 - 2 * nu) * Bp - 0.5 * (1 + 2 * nu) * math.acosh(a / ri))
+            assert abs(printed - srr) / pm > 1e-3

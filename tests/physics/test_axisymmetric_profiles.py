@@ -21,7 +21,7 @@ def test_power_law_n1_n2_are_cone_and_paraboloid():
 
 def test_closed_form_relations():
     """Cone: delta = (pi/2) a tan(theta), p_m = tan(theta)/2; paraboloid: delta = a^2/R,
-    F_N = 4 a^3/(3R) (sheet §1)."""
+    F_N = 4 a^3/(3R) (docs/theory/axisymmetric.md (A3), (A5)-(A6))."""
     a = np.array([0.5, 2.0])
     cone, par = ax.cone(0.3), ax.paraboloid(4.0)
     np.testing.assert_allclose(cone.depth(a), 0.5 * math.pi * a * 0.3, rtol=1e-15)

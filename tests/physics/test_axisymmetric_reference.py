@@ -1,8 +1,7 @@
-"""Every point of shared/formulas/seed000/reference_points.json (an independent Boussinesq/Cerruti
-superposition route) through both the closed forms and the quadrature route."""
-import json
+"""Every point of tests/data/axisymmetric_surface.json (an independent Boussinesq/Cerruti
+superposition route; provenance in tests/data/README.md) through both the closed forms and the
+quadrature route."""
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -84,6 +83,8 @@ def test_stick_radius_of_reference_cases(cases):
 
 
 def test_figure_stick_radii():
-    """Sheet §7: cone, nu = 0.3, u_x0 = delta/4: c/a = 0 (mu 0.1, 0.2), 16/51 (0.3), 33/68 (0.4)."""
+    """The paper's figure cases (docs/theory/axisymmetric.md, errata: u_x0 = delta/4, not delta/2) by
+    eq. (38), docs/theory/axisymmetric.md (A32)-(A33): cone, nu = 0.3: c/a = 0 (mu 0.1, 0.2), 16/51 (0.3),
+    33/68 (0.4)."""
     c = ax.stick_radius(1.0, 0.3, np.array([0.1, 0.2, 0.3, 0.4]), 0.25, ax.cone(1.0))
     np.testing.assert_allclose(c, [0.0, 0.0, 16 / 51, 33 / 68], rtol=1e-14, atol=0)

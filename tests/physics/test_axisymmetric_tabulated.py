@@ -9,9 +9,10 @@ knots, in the stick zone, the slip annulus, near the contact edge and outside, a
 share nothing with the implementation's rules:
 
 * the normal part inside the contact from the local identity dp/dz = ((1+nu)/3) Laplacian(u_z)
-  (sheet, eq. 5) with u_z = delta - f: -((1+nu)/3) (f'' + f'/r) of the spline itself, no MDR;
+  (docs/theory/axisymmetric.md (A31)) with u_z = delta - f: -((1+nu)/3) (f'' + f'/r) of the spline itself, no MDR;
 * eq. (11) outside (by-parts form, both branches) and eq. (26) for the tangential part, as written
-  in the sheet (u g''(u) / sqrt(u^2 - r^2), not the implementation's psi form), by adaptive scipy
+  in docs/theory/axisymmetric.md (A53)-(A54) (u g''(u) / sqrt(u^2 - r^2), not the implementation's psi
+  form (A87)-(A88)), by adaptive scipy
   quad after u = r -+ v^2 (which removes the end-point root), split at every knot;
 * g' and g'' themselves from scipy quad of the spline, g'(x) = int_0^(pi/2) [f'(x s) + x s f''(x s)]
   dphi, s = sin(phi), split where x s crosses a knot (eq. 12 differentiated under the integral).

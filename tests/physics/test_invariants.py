@@ -1,8 +1,6 @@
 """Von Mises (eq. 30, sqrt(3 J2)) and principal stresses: against the reference points, the
-closed form at y = 0 (formula sheet §0) and basic algebra."""
-import json
+closed form at y = 0 (docs/theory/axisymmetric.md (A61)) and basic algebra."""
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -34,7 +32,8 @@ def test_against_reference_points(points):
 
 def test_closed_form_on_y0():
     """At y = 0 sigma_xy = sigma_yz = 0: sigma_yy is principal and the other two are
-    (sxx+szz)/2 +- sqrt((sxx-szz)^2/4 + sxz^2) (sheet §0).  Cone and paraboloid in partial slip."""
+    (sxx+szz)/2 +- sqrt((sxx-szz)^2/4 + sxz^2) (docs/theory/axisymmetric.md (A61)).  Cone and
+    paraboloid in partial slip."""
     x = np.linspace(-2.5, 2.5, 501)
     for prof in (ax.cone(0.7), ax.paraboloid(2.0)):
         s = ax.surface_stress(x, 0.0, 1.0, 0.45, 0.3, 0.4, prof)

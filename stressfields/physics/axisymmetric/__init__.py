@@ -2,8 +2,9 @@
 normal gradient of the hydrostatic pressure under normal and Cattaneo–Mindlin tangential load.
 
 E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic pressure in the
-contact plane of axisymmetric bodies under normal and tangential loading"; equations as cleaned
-and verified in shared/formulas/seed000/formulas.md.  Pure NumPy/SciPy; results divided by E*.
+contact plane of axisymmetric bodies under normal and tangential loading", Forschung im
+Ingenieurwesen (2020); the equations as implemented, with conventions, stable forms and errata, are
+in docs/theory/axisymmetric.md (A1)-(A94).  Pure NumPy/SciPy; results divided by E*.
 """
 from .profiles import (FlatPunch, Cone, Paraboloid, PowerLaw, Profile, Tabulated, cone, flat_punch,
                        paraboloid, power_law, tabulated)

@@ -1,4 +1,5 @@
-"""Numerically stable elementary pieces shared by the axisymmetric kernels (formula sheet §0)."""
+"""Numerically stable elementary pieces shared by the axisymmetric kernels: the forms of
+docs/theory/axisymmetric.md (A78)-(A94)."""
 from __future__ import annotations
 
 import math
@@ -10,13 +11,14 @@ __all__ = ["sqrt_diff", "arccosh_ratio", "asin_defect", "hertz_f2", "hertz_f4", 
 
 
 def sqrt_diff(p, q):
-    """sqrt(p^2 - q^2) as sqrt((p - q)(p + q)): no cancellation near p = q (sheet §0); 0 if p < q."""
+    """sqrt(p^2 - q^2) as sqrt((p - q)(p + q)): no cancellation near p = q
+    (docs/theory/axisymmetric.md (A78)); 0 if p < q."""
     return np.sqrt(np.maximum((p - q) * (p + q), 0.0))
 
 
 def arccosh_ratio(a, r):
-    """arccosh(a/r) for a >= r > 0 as log1p((a - r + sqrt((a-r)(a+r)))/r) (sheet §0): accurate both
-    for r -> 0 and r -> a."""
+    """arccosh(a/r) for a >= r > 0 as log1p((a - r + sqrt((a-r)(a+r)))/r), docs/theory/axisymmetric.md
+    (A79): accurate both for r -> 0 and r -> a."""
     return np.log1p((a - r + sqrt_diff(a, r)) / r)
 
 
@@ -34,8 +36,9 @@ _ASIN_DEFECT = [math.comb(2 * k, k) / 4.0 ** k * 2 * k / (2 * k + 1) for k in ra
 
 def asin_defect(a, r):
     """a / sqrt(r^2 - a^2) - arcsin(a/r) for 0 <= a < r.  The direct difference loses (r/a)^2
-    relative digits far outside the contact (Hertz dp/dz); a series in q = a/r is used for q < 0.25.
-    Near r = a the square root is formed as sqrt((r-a)(r+a)) (sheet §0), not from a/r."""
+    relative digits far outside the contact (Hertz dp/dz); a series in q = a/r is used for q < 0.25
+    (docs/theory/axisymmetric.md (A92)).  Near r = a the square root is formed as sqrt((r-a)(r+a))
+    (docs/theory/axisymmetric.md (A78)), not from a/r."""
     a = np.asarray(a, dtype=float)
     r = np.asarray(r, dtype=float)
     q = a / r
@@ -56,7 +59,8 @@ _F4 = [(-1) ** k * (16.0 ** k - 4.0 ** (k + 1)) / (4.0 * math.factorial(2 * k + 
 
 def hertz_f2(theta):
     """F / r^2 of eqs. (16)-(17): 2 int_0^theta sin^2 = theta - sin(theta) cos(theta).  Series for
-    theta < 0.5 (the closed form loses (r/a)^2 relative digits far outside, sheet §0)."""
+    theta < 0.5 (the closed form loses (r/a)^2 relative digits far outside,
+    docs/theory/axisymmetric.md (A93))."""
     t = np.asarray(theta, dtype=float)
     t2 = t * t
     series = t * t2 * _series(t2, _F2)
@@ -66,7 +70,8 @@ def hertz_f2(theta):
 
 def hertz_f4(theta):
     """H / r^4 of eqs. (16)-(17): 2 int_0^theta sin^4 = (3 theta - 2 sin 2theta + sin(4 theta)/4)/4.
-    Series for theta < 0.5 (the closed form loses (r/a)^4 relative digits far outside, sheet §0)."""
+    Series for theta < 0.5 (the closed form loses (r/a)^4 relative digits far outside,
+    docs/theory/axisymmetric.md (A94))."""
     t = np.asarray(theta, dtype=float)
     t2 = t * t
     series = t * t2 * t2 * _series(t2, _F4)

@@ -3,7 +3,8 @@ surface stresses, dp/dz, tangential force and frictional dissipation.
 
 E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic pressure in the
 contact plane of axisymmetric bodies under normal and tangential loading", eq. (27)-(28)
-(formula sheet §3.3).  In the method of dimensionality reduction every 1-D spring at |x| <= a
+(docs/theory/axisymmetric.md (A65)-(A77); R. D. Mindlin, H. Deresiewicz, J. Appl. Mech. 20 (1953)
+327-344).  In the method of dimensionality reduction every 1-D spring at |x| <= a
 carries the history: the indenter drags the spring tops by u_x0(t); a spring sticks while
 |u_x,1D(x)| < L(x) and slips (Coulomb) at |u_x,1D| = L(x), with
 

@@ -1,6 +1,7 @@
 """The 1-D integrals of the general (any profile) route, vectorised over field points.
 
-Willert, Forsbach & Popov, eqs. (9), (11), (24)-(26), with the substitutions of formula sheet §0:
+Willert, Forsbach & Popov, eqs. (9), (11), (24)-(26) (docs/theory/axisymmetric.md (A14)-(A15),
+(A24)-(A26), (A34), (A38), (A53)-(A54)), with the substitutions of docs/theory/axisymmetric.md section 9:
 
 * ``u = r cosh t`` for integrals over u in [r, a] with the kernel 1/sqrt(u^2 - r^2): the endpoint
   singularity and the nearby branch point u = -r both disappear (u = -r maps to t = i pi), the
@@ -261,8 +262,9 @@ def pressure_gradient_D(profile, r, th_h, ords: Orders):
     """D(r) = g'(0)/r + int_0^th_h g''(r sin t) dt, th_h = arcsin(min(r, a)/r): the bracket of
     eq. (11) / (33).  For a power law g' = B u^m: B m r^(m-1) int_0^th_h sin^(m-1) t dt for m > 0
     (Gauss–Jacobi, weight t^(m-1)); B/r for the cone m = 0; for -1 < m < 0 (g'(0) infinite) the
-    Hadamard finite part B r^(m-1) [th_h^m + m int_0^th_h t^(m-1) ((sin t / t)^(m-1) - 1) dt].
-    (The finite-part form is valid for every m > -1 but cancels badly for large m.)"""
+    Hadamard finite part B r^(m-1) [th_h^m + m int_0^th_h t^(m-1) ((sin t / t)^(m-1) - 1) dt]
+    (docs/theory/axisymmetric.md (A85)).  (The finite-part form is valid for every m > -1 but cancels
+    badly for large m.)"""
     if r.size == 0:
         return np.zeros(0)
     if _is_power_law(profile):
@@ -286,8 +288,8 @@ def pressure_gradient_D(profile, r, th_h, ords: Orders):
 
 def pressure_gradient_far(profile, r, th_h, ords: Orders):
     """int_0^th_h sin(t) g'(r sin t) / cos^2(t) dt, th_h = arcsin(a/r): r times the outside
-    integral of eq. (11), int_0^a u g'(u) du / (r^2 - u^2)^(3/2).  Used for r > 2a, where the
-    by-parts form (11b') would cancel like (r/a)^2."""
+    integral of eq. (11), int_0^a u g'(u) du / (r^2 - u^2)^(3/2) (docs/theory/axisymmetric.md (A86)).
+    Used for r > 2a, where the by-parts form (A26) would cancel like (r/a)^2."""
     if r.size == 0:
         return np.zeros(0)
     if _is_power_law(profile):

@@ -4,7 +4,8 @@ E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic
 contact plane of axisymmetric bodies under normal and tangential loading".  Closed forms: eq. (1)
 and (5) (paraboloid, Huber/Hertz), eq. (36)-(37) (cone), eq. (3) and the regular part of (6) (flat
 punch, times its depth).  General profile: eq. (9) and (11) evaluated by the 1-D integrals of
-``integrals``.  Signs and conventions as formula sheet §1 (tension positive, z into the body).
+``integrals``.  Signs and conventions as docs/theory/axisymmetric.md section 2 (tension positive, z
+into the body); equations docs/theory/axisymmetric.md (A12)-(A30).
 
 Functions here work on 1-D arrays of points with r > 0 (the public wrappers in ``surface`` handle
 broadcasting, validation and r = 0).  Polar results are returned as (szz, srr, sff, dev) with
@@ -27,7 +28,8 @@ def _err():
 
 
 def polar_closed(closed, r, a, nu):
-    """(szz, srr, sff, dev) of the closed forms (1), (3), (36); r > 0.  r <= a counts as contact."""
+    """(szz, srr, sff, dev) of the closed forms (1), (3), (36) (docs/theory/axisymmetric.md (A12)-(A13),
+    (A18)-(A21), in the stable forms (A80)-(A83)); r > 0.  r <= a counts as contact."""
     kind = closed[0]
     inside = r <= a
     s = sqrt_diff(a, r)                      # sqrt(a^2 - r^2) inside
@@ -36,7 +38,7 @@ def polar_closed(closed, r, a, nu):
         if kind == "cone":
             p0 = 0.5 * closed[1]
             L = np.where(inside, arccosh_ratio(a, np.minimum(r, a)), 0.0)
-            B = a / (a + s)                  # (a^2/r^2)(1 - sqrt(1 - r^2/a^2)), stable (sheet §0)
+            B = a / (a + s)                  # (a^2/r^2)(1 - sqrt(1 - r^2/a^2)), stable form (A80)
             szz = np.where(inside, -p0 * L, 0.0)
             out_rr = 0.5 * q * p0 * (a / r) ** 2
             srr = np.where(inside, p0 * (0.5 * q * B - 0.5 * (1.0 + 2.0 * nu) * L), out_rr)
@@ -74,7 +76,8 @@ def polar_from_integrals(profile, r, a, nu, G, GE):
     The load bracket of eq. (9), F_N - 2 int_r^a sqrt(u^2-r^2) g' du, is a difference of O(1)
     terms that is O(r^2): as written it loses (a/r)^2 relative digits as r -> 0.  It is rewritten as
     F(r) + 2 r^2 int_r^a g'(u) du / (u + sqrt(u^2 - r^2)), F(r) = 2 int_0^r u g' du (the force of
-    the same profile at contact radius r), whose terms are both O(r^2).  With u = r cosh t,
+    the same profile at contact radius r), whose terms are both O(r^2) (docs/theory/axisymmetric.md
+    (A84)).  With u = r cosh t,
     du / (u + s) = (1 - e^{-2t})/2 dt, so the integral is (G - GE)/2."""
     inside = r <= a
     h = np.minimum(r, a)
@@ -102,7 +105,7 @@ def dpdz_closed(closed, r, a, nu):
     with _err():
         if kind == "cone":
             p0 = 0.5 * closed[1]
-            # 1/sqrt(r^2-a^2) - 1/r = a^2 / (r s (r + s)) (sheet §0)
+            # 1/sqrt(r^2-a^2) - 1/r = a^2 / (r s (r + s)), docs/theory/axisymmetric.md (A91)
             return np.where(inside, -C2 * p0 / r, C2 * p0 * a * a / (r * s * (r + s)))
         if kind == "paraboloid":
             R = closed[1]
@@ -115,9 +118,10 @@ def dpdz_closed(closed, r, a, nu):
 
 
 def dpdz_quadrature(profile, r, a, nu, ords):
-    """Normal-load d p_h/dz / E*, eq. (11): -C D(r) inside; the by-parts form (11b')
-    C [g'(a)/sqrt(r^2-a^2) - D(r)] for a < r <= 2a; the direct outside integral for r > 2a (where
-    (11b') would cancel like (r/a)^2).  C = 2(1+nu)/(3 pi)."""
+    """Normal-load d p_h/dz / E*, eq. (11): -C D(r) inside; the by-parts form
+    C [g'(a)/sqrt(r^2-a^2) - D(r)] for a < r <= 2a (docs/theory/axisymmetric.md (A26)); the direct
+    outside integral for r > 2a (A86), where the by-parts form would cancel like (r/a)^2.
+    C = 2(1+nu)/(3 pi)."""
     out = np.empty(r.size)
     inside = r <= a
     near = ~inside & (r <= 2.0 * a)

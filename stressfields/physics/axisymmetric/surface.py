@@ -4,7 +4,8 @@ E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic
 contact plane of axisymmetric bodies under normal and tangential loading".  Normal part eq. (9)
 (closed: (1), (36); flat punch (3) times depth), Cattaneo–Mindlin tangential part eq. (24)-(25)
 (closed: (14)-(17), (39)-(40); flat punch (18)-(19)), pressure gradient eq. (11) + (26) (closed:
-(5), (21), (37), (41); flat punch regular parts of (6), (22)).  Conventions of formula sheet §1:
+(5), (21), (37), (41); flat punch regular parts of (6), (22)); in the package's numbering
+docs/theory/axisymmetric.md (A11)-(A59).  Conventions of docs/theory/axisymmetric.md section 2:
 tension positive, z into the body, sigma_zz(z=0) = -p, traction on the half-space along +x so
 sigma_xz = -q <= 0, p_h = -trace/3.
 
@@ -349,10 +350,11 @@ def _dpdz_origin(profile, closed, ords, a, c, nu, mu):
 def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10):
     """d p_h / dz at z = 0+ (z into the material), divided by E* (units 1/length).
 
-    Normal part eq. (11) (stable forms of sheet §0/§5: by-parts form (11b') near the edge, the
-    direct outside integral far from it; closed eq. 5, 37; flat punch regular part of eq. 6 times its
-    depth) plus tangential part eq. (26) (closed 21, 41; flat punch regular part of eq. 22).
-    Willert, Forsbach & Popov (see ``surface_stress`` for the arguments).
+    Normal part eq. (11) (stable forms docs/theory/axisymmetric.md (A26), (A85)-(A86): the by-parts
+    form near the edge, the direct outside integral far from it; closed eq. 5, 37; flat punch regular
+    part of eq. 6 times its depth) plus tangential part eq. (26) in the form (A87)-(A88) (closed 21,
+    41; flat punch regular part of eq. 22).  Willert, Forsbach & Popov (see ``surface_stress`` for the
+    arguments).
 
     Infinite on r = c (stick side, +inf sgn x) and r = a (contact side, -inf sgn x) when a
     tangential load acts (0 there on x = 0), and at a conical tip r = 0 (-inf); NaN at r = 0 of a

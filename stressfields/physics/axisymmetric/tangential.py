@@ -2,7 +2,8 @@
 
 E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic pressure in the
 contact plane of axisymmetric bodies under normal and tangential loading".  Traction on the
-half-space along +x (sheet §1): sigma_xz = -q = mu [sigma_zz(r; a) - sigma_zz(r; c)], eq. (24);
+half-space along +x (docs/theory/axisymmetric.md section 2): sigma_xz = -q = mu [sigma_zz(r; a) -
+sigma_zz(r; c)], eq. (24), docs/theory/axisymmetric.md (A34);
 stick radius c (c = 0: gross slip).  Closed forms: cone eq. (39)-(41); paraboloid eq. (14)-(17),
 (21) with the stick-zone difference; sliding flat punch eq. (18), (19), regular part of (22) times
 its depth.  General profile: eq. (24)-(26) from the 1-D integrals of ``integrals``.
@@ -40,7 +41,7 @@ def shear_closed(closed, r, a, c, mu):
         if kind == "cone":
             p0 = 0.5 * closed[1]
             stick = r <= c
-            # ln((a + sqrt(a^2-r^2)) / (c + sqrt(c^2-r^2))): no difference of two arccosh (sheet §0)
+            # ln((a + sqrt(a^2-r^2)) / (c + sqrt(c^2-r^2))): no difference of two arccosh (A36)
             v_stick = np.log((a + sa) / np.where(stick, c + sc, 1.0))
             v_slip = arccosh_ratio(a, np.minimum(r, a))
             return np.where(r <= a, -mu * p0 * np.where(stick, v_stick, v_slip), 0.0)
@@ -64,7 +65,7 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu):
             outside = r > a
             A = np.where(outside, sqrt_diff(r, a) / r, 0.0)
             Cc = sqrt_diff(r, c) / r
-            # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C)  (sheet §0)
+            # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C), docs/theory/axisymmetric.md (A90)
             D1 = np.where(outside, ((a - c) * (a + c) / (r * r)) / (A + Cc), Cc)
             D3 = -D1 * (A * A + A * Cc + Cc * Cc)          # A^3 - C^3
             k = mu * p0
@@ -110,7 +111,7 @@ def dpdz_closed(closed, x, r, a, c, nu, mu):
     with _err():
         if kind == "cone":
             k = C2 * mu * 0.5 * closed[1]
-            # (a/sqrt(a^2-r^2) - c/sqrt(c^2-r^2)) / r^2 = 1/(sa(a+sa)) - 1/(sc(c+sc))  (sheet §0)
+            # (a/sqrt(a^2-r^2) - c/sqrt(c^2-r^2)) / r^2 = 1/(sa(a+sa)) - 1/(sc(c+sc)), docs/theory/axisymmetric.md (A89)
             v_stick = -k * x * (1.0 / (sa * (a + sa)) - 1.0 / (sc * (c + sc)))
             v_slip = -k * x * a / (r * r * sa)
             v = np.where(stick, v_stick, np.where(inside, v_slip, 0.0))
@@ -159,7 +160,8 @@ def dpdz_from_integrals(profile, x, r, a, c, nu, mu, H_slip):
       c < r <= a:  -C_T x [g'(r)/r^2 + g'(a) psi(a) - int_r^a g''(u) psi(u) du]
 
     (the identity a g'(a)/sqrt(a^2-r^2) = g'(a)(1 + r^2 psi(a)) and int u g''/sqrt = int g''(1 +
-    r^2 psi) turn eq. (26) into these).  H_slip = int_max(r,c)^a g'' psi du.  C_T = 2(1+nu)mu/(3 pi)."""
+    r^2 psi) turn eq. (26) into these; docs/theory/axisymmetric.md (A87)-(A88)).
+    H_slip = int_max(r,c)^a g'' psi du.  C_T = 2(1+nu)mu/(3 pi)."""
     sa, sc = sqrt_diff(a, r), sqrt_diff(c, r)
     stick = r <= c
     with _err():
