@@ -18,16 +18,19 @@ surface with a contact so narrow that the periodic correction to the pressure (a
 error stays below the tolerance, `pressure` is the cheaper non-periodic series (validity = 3).
 "approximate_eq18" / "approximate_eq20" replace `pressure`
 (only) by the paper's approximate formulas, which are inaccurate: they exist so their error can be
-charted, are never the default, and are flagged validity = 2 at every point.
+charted, are never the default, and are flagged validity = 2 at every point. What each method means
+is decided in one place, the physics route table (`physics/wavy/routes.py`); `evaluate` maps the
+recipe onto one `physics.wavy.fields` call per domain and applies the physical scales.
 """
 from __future__ import annotations
 
 import math
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 
 from ..physics import wavy as wv
-from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
+from .base import ARRAY, INT, STR, Options, Parameter, Scenario, Variable
 
 REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy surface with an elastic "
              "half-plane, Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467 (pressures with "
@@ -35,7 +38,8 @@ REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy s
 
 PSTAR = "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)"
 DOMAINS = ("periodic", "nonperiodic")
-APPROXIMATE = {"approximate_eq18": wv.approximate_pressure_eq18, "approximate_eq20": wv.approximate_pressure_eq20}
+DELTA_1 = "the amplitude Delta_1 of the base wave"
+HALF_WIDTH = "the contact half-width a"
 #: what a per-contact (x-independent) quantity depends on; only the swept ones become dimensions
 CASE = ("domain", "amplitudes", "wavenumbers", "n_harmonics", "E", "nu", "lambda_1", "a")
 
@@ -70,7 +74,7 @@ VARIABLES = (
                      "method approximate_eq18/eq20 it is instead the paper's approximate formula, which is "
                      "NOT accurate (validity = 2); all other variables stay exact."),
     Variable("uz", "surface displacement u_z(x), positive into the body", units_physical="m",
-             scale="the amplitude Delta_1 of the base wave",
+             scale=DELTA_1,
              comment="Datum (C = 0 in eq. 5): periodic domain, kernel ln|2 sin(pi (x - xi)/lambda_1)|, so u_z "
                      "has zero mean over one period; non-periodic domain, kernel ln|2 pi (x - xi)/lambda_1| "
                      "(lengths in units of lambda_1/(2 pi)). Inside the contact u_z(x) = u_z(0) - g(x)."),
@@ -83,7 +87,7 @@ VARIABLES = (
     Variable("max_pressure", "global maximum of the contact pressure over the contact", units_physical="Pa",
              scale=PSTAR, dims=CASE),
     Variable("max_pressure_x", "position x >= 0 of the global pressure maximum (p is even)", units_physical="m",
-             scale="the contact half-width a", dims=CASE),
+             scale=HALF_WIDTH, dims=CASE),
     Variable("continuous_contact", "exact test of the continuous-contact assumption", dtype="int8", dims=CASE,
              flag_values=(0, 1), flag_meanings=("fails", "holds"),
              comment="1 where p/sqrt(1-(x/a)^2) >= 0 over the contact and the gap outside it is >= 0 "
@@ -120,9 +124,11 @@ VARIABLES = (
                      "periodic domain: pressure is the non-periodic series, within method.rtol of the "
                      "periodic one (see periodic_correction); uz and the per-case values stay periodic."),
 )
+#: variable -> the scale its normalised value is multiplied by in physical mode (its declaration's)
+_SCALE = {v.name: v.scale for v in VARIABLES if v.scale}
 
 
-def evaluate(names, p, options):
+def evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options) -> dict[str, np.ndarray]:
     """Each domain value is a separate physics call (periodic is a flag there), merged along its axis."""
     domain = np.asarray(p.get("domain", "periodic"), dtype=object)
     out: dict[str, np.ndarray] = {}
@@ -133,56 +139,23 @@ def evaluate(names, p, options):
     return out
 
 
-def _evaluate(names, p, options, periodic):
+def _evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options, periodic: bool) -> dict[str, np.ndarray]:
+    """One domain: recipe values -> wv.fields (normalised), then the scales p*, Delta_1, a (physical mode)."""
     amps, wns = np.asarray(p["amplitudes"], dtype=float), np.asarray(p["wavenumbers"], dtype=float)
     a = np.asarray(p["a"], dtype=float)
-    exact = dict(periodic=periodic, n_harmonics=p.get("n_harmonics"))
-    series = dict(exact, rtol=options["rtol"])
     if options["physical"]:
         pstar = math.pi * p["E"] / (1.0 - p["nu"] ** 2) * amps[0] / p["lambda_1"]
         length, half_width = amps[0], a * p["lambda_1"] / 2.0
     else:
         pstar, length, half_width = 1.0, 1.0, 1.0
-    table = (a, amps, wns)
-    out: dict[str, np.ndarray] = {}
-
-    if any(n in names for n in ("pressure", "uz", "validity")):
-        x = np.asarray(p["x"], dtype=float) / half_width
-        approx = APPROXIMATE.get(options["method"])
-        substituted = np.False_
-        if "pressure" in names:
-            if approx:   # nonperiodic only: the recipe check refuses the periodic domain
-                out["pressure"] = approx(x, *table, n_harmonics=exact["n_harmonics"]) * pstar
-            else:
-                value, info = wv.pressure(x, *table, **series, substitute=options["method"] == "auto")
-                out["pressure"] = value * pstar
-                substituted = info.get("substituted", np.False_)
-        if "uz" in names:
-            out["uz"] = wv.displacement(x, *table, **series)[0] * length
-        if "validity" in names:
-            ok = wv.peak_pressure(*table, **series)[1]["converged"]
-            out["validity"] = np.int8(2) if approx else np.where(ok, np.where(substituted, 3, 0), 1).astype(np.int8)
-
-    if "mean_pressure" in names:
-        out["mean_pressure"] = wv.mean_pressure(*table, **exact) * pstar
-    if any(n in names for n in ("peak_pressure", "n_terms", "error_estimate", "converged")):
-        p0, info = wv.peak_pressure(*table, **series)
-        out.update(peak_pressure=p0 * pstar, n_terms=info["n_terms"], error_estimate=info["error_estimate"] * pstar,
-                   converged=info["converged"].astype(np.int8))
-    if "max_pressure" in names or "max_pressure_x" in names:
-        pmax, xmax, _ = wv.max_pressure(*table, **series)
-        out.update(max_pressure=pmax * pstar, max_pressure_x=xmax * half_width)
-    if "continuous_contact" in names:
-        out["continuous_contact"] = wv.continuous_contact(*table, **series).astype(np.int8)
-    if "periodic_correction" in names:
-        out["periodic_correction"] = wv.periodic_correction(*table, n_harmonics=exact["n_harmonics"],
-                                                            rtol=options["rtol"])[0] * pstar
-    if "johnson_parameter" in names:
-        out["johnson_parameter"] = wv.johnson_parameter(*table, **exact)
-    return {n: out[n] for n in names}
+    x = np.asarray(p.get("x", 0.0), dtype=float) / half_width
+    raw = wv.fields(names, x, a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics"),
+                    method=options["method"], rtol=options["rtol"])
+    factor = {PSTAR: pstar, DELTA_1: length, HALF_WIDTH: half_width}
+    return {n: raw[n] * factor[_SCALE[n]] if n in _SCALE else raw[n] for n in names}
 
 
-def check(values, physical, method):
+def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
     """Cross-parameter checks: the harmonic table, n_harmonics against it, approximations' domain."""
     amps, wns = values.get("amplitudes"), values.get("wavenumbers")
     if amps is None or wns is None:
@@ -209,7 +182,7 @@ def check(values, physical, method):
         problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
     domain = values.get("domain")
-    if method in APPROXIMATE and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
+    if method in wv.APPROXIMATE and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
         problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "
                         f"it needs domain = 'nonperiodic', got domain = {_show(domain)}")
     return problems
@@ -228,14 +201,8 @@ WAVY = Scenario(
     summary="Rigid multisinusoidal wavy surface (periodic or single indenter) on an elastic half-plane in "
             "continuous contact: pressure, displacement, mean and peak pressure, validity of the contact model",
     references=REFERENCE, theory="wavy", parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
-    physical_switch="E", methods=("auto", "series", *APPROXIMATE), check=check,
+    physical_switch="E", methods=wv.METHODS, check=check,
     conventions="plane strain, frictionless; pressure positive in compression; u_z positive into the body",
-    route=lambda values, method, rtol: (
-        (f"the paper's approximate {method.removeprefix('approximate_')} (inaccurate; for comparison only)",
-         "not controlled: see the exact series") if method in APPROXIMATE else
-        ("Chebyshev series (periodic, eq. 10-12) or Bessel series (non-periodic, eq. 14), length from rtol"
-         + ("; auto: pressure of a narrow periodic contact by the non-periodic series where the periodic "
-            "correction is below rtol (validity = 3)" if method == "auto" else ""),
-         f"series error below rtol = {rtol:g}; per case in error_estimate, flagged in converged")),
+    route=lambda values, method, rtol: wv.resolve(method, rtol),
 )
 SCENARIOS: tuple = (WAVY,)

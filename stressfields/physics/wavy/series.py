@@ -209,7 +209,8 @@ def power_sum(table, row, w):
     w = np.asarray(w, dtype=float)
     # terms with w^(2m+1) < 1e-18 cannot matter (|D_m| <= sum_i |w_i|): skip them per element
     with np.errstate(divide="ignore"):
-        m_need = np.where(w < 1.0, np.ceil(0.5 * (np.log(1e-18) / np.log(np.clip(w, 1e-300, 1.0 - 1e-16)) - 1.0)) + 1, np.inf)
+        m_need = np.where(w < 1.0, np.ceil(0.5 * (np.log(1e-18) / np.log(np.clip(w, 1e-300, 1.0 - 1e-16)) - 1.0)) + 1,
+                          np.inf)
     K_el = np.minimum(table.K[row], np.maximum(m_need, 1)).astype(int)
     order, Ks, row_s, (ws,) = _sorted(K_el, row, w)
     out = np.zeros(ws.size)

@@ -1,0 +1,97 @@
+"""One entry point of the wavy family: every quantity the scenario offers, normalised, in one call.
+
+Callers (the scenario `wavy`) only map their inputs to these arguments and multiply the results by
+the physical scales of docs/theory/wavy.md (W2); which computation a method selects is decided by
+``routes`` alone.
+"""
+from __future__ import annotations
+
+from typing import Iterable
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from . import api
+from .api import DEFAULT_MAX_TERMS, DEFAULT_RTOL
+from .routes import approximation, substitutes
+
+#: the names ``fields`` computes; pointwise ones depend on x_over_a, the others per contact
+POINTWISE: tuple[str, ...] = ("pressure", "uz", "validity")
+PER_CASE: tuple[str, ...] = ("mean_pressure", "peak_pressure", "max_pressure", "max_pressure_x",
+                             "continuous_contact", "johnson_parameter", "n_terms", "periodic_correction",
+                             "error_estimate", "converged")
+FIELDS: tuple[str, ...] = POINTWISE + PER_CASE
+_PEAK = ("validity", "peak_pressure", "n_terms", "error_estimate", "converged")
+
+
+def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayLike, amplitudes: ArrayLike,
+           wavenumbers: ArrayLike, *, periodic: bool, n_harmonics: ArrayLike | None = None, method: str = "auto",
+           rtol: float = DEFAULT_RTOL, max_terms: int = DEFAULT_MAX_TERMS) -> dict[str, np.ndarray]:
+    """The requested quantities of one domain, normalised as in docs/theory/wavy.md (W2).
+
+    Arguments as in ``api`` (x_over_a = x/a, the harmonic table, ``periodic`` for the periodic
+    surface, ``n_harmonics`` the rows used); ``method`` one of ``routes.METHODS``, ``rtol`` the
+    series tolerance.  Returns {name: array} for ``names`` (any of ``FIELDS``), in these units:
+
+    * pressure -- p(x)/p*, the series (W9) of the domain, (W5)-(W8); with ``auto`` the non-periodic
+      series where it is within rtol of a narrow periodic contact's, (W26); with an
+      ``approximate_*`` method the paper's formula (W29) instead (non-periodic only);
+    * uz -- u_z(x)/Delta_1, (W15) with the approach (W16) and the gap outside the contact (W18);
+    * mean_pressure -- p_inf/p*, closed forms (W11) (periodic) and (W12) (non-periodic);
+    * peak_pressure -- p(0)/p*, (W13); max_pressure, max_pressure_x -- the global maximum over the
+      contact /p* and its position x/a >= 0, (W14);
+    * continuous_contact -- int8, 1 where (P) and (G) of (W20) hold;
+    * johnson_parameter -- max over the ripples i >= 2 of chi_i, (W21) (0 for one harmonic);
+    * n_terms, error_estimate (/p*), converged (int8) -- the series length, its error bound and
+      whether rtol was met, (W22), (W23);
+    * periodic_correction -- bound on max |p_periodic - p_nonperiodic|/p* over the contact, (W26);
+    * validity -- int8 per point, (W25): 0 series converged, 1 not converged, 2 approximate formula,
+      3 pressure taken from the non-periodic series (only where ``pressure`` is among ``names``).
+
+    Per-contact quantities have the shape of broadcast(two_a_over_lambda1, n_harmonics), pointwise
+    ones that broadcast with x_over_a.  Pure NumPy/SciPy, no state.
+    """
+    names = tuple(names)
+    unknown = [n for n in names if n not in FIELDS]
+    if unknown:
+        raise ValueError(f"unknown wavy field(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(FIELDS)}")
+    approx = approximation(method)
+    if approx is not None and periodic:
+        raise ValueError(f"method {method!r} is the paper's approximation for a non-periodic indenter; "
+                         "it needs periodic=False")
+    wanted = set(names)
+    table = (two_a_over_lambda1, amplitudes, wavenumbers)
+    exact = dict(periodic=periodic, n_harmonics=n_harmonics)
+    series = dict(exact, rtol=rtol, max_terms=max_terms)
+    out: dict[str, np.ndarray] = {}
+
+    substituted = np.False_
+    if "pressure" in wanted:
+        if approx is not None:
+            out["pressure"] = approx(x_over_a, *table, n_harmonics=n_harmonics)
+        else:
+            value, info = api.pressure(x_over_a, *table, **series, substitute=substitutes(method))
+            out["pressure"] = value
+            substituted = info.get("substituted", np.False_)
+    if "uz" in wanted:
+        out["uz"] = api.displacement(x_over_a, *table, **series)[0]
+    if wanted.intersection(_PEAK):
+        p0, info = api.peak_pressure(*table, **series)
+        out.update(peak_pressure=p0, n_terms=info["n_terms"], error_estimate=info["error_estimate"],
+                   converged=info["converged"].astype(np.int8))
+        if "validity" in wanted:
+            out["validity"] = (np.int8(2) if approx is not None else
+                               np.where(info["converged"], np.where(substituted, 3, 0), 1).astype(np.int8))
+    if "mean_pressure" in wanted:
+        out["mean_pressure"] = api.mean_pressure(*table, **exact)
+    if wanted.intersection(("max_pressure", "max_pressure_x")):
+        pmax, xmax, _ = api.max_pressure(*table, **series)
+        out.update(max_pressure=pmax, max_pressure_x=xmax)
+    if "continuous_contact" in wanted:
+        out["continuous_contact"] = api.continuous_contact(*table, **series).astype(np.int8)
+    if "periodic_correction" in wanted:
+        out["periodic_correction"] = api.periodic_correction(*table, n_harmonics=n_harmonics, rtol=rtol,
+                                                             max_terms=max_terms)[0]
+    if "johnson_parameter" in wanted:
+        out["johnson_parameter"] = api.johnson_parameter(*table, **exact)
+    return {n: out[n] for n in names}

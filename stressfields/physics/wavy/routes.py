@@ -1,0 +1,63 @@
+"""The route table of the wavy family: what each method means, and the paper's approximations.
+
+The one place that says which computation a method name selects (docs/theory/wavy.md (W25)):
+
+* ``series`` -- the exact series of the domain, (W9) with the coefficients of (W7) (periodic) or
+  (W8) (non-periodic), its length chosen from rtol, (W22)-(W24);
+* ``auto`` -- the same, except that the pressure of a narrow periodic contact is taken from the
+  cheaper non-periodic series where the periodic correction (W26) plus that series' error stays
+  within rtol (validity = 3);
+* ``approximate_eq18`` / ``approximate_eq20`` -- the pressure only by the paper's approximate
+  formulas (W29), non-periodic only, inaccurate (validity = 2).
+
+``resolve`` gives the route and accuracy strings written into every file's attributes; they must
+not change.
+"""
+from __future__ import annotations
+
+from typing import Callable
+
+import numpy as np
+
+from .api import approximate_pressure_eq18, approximate_pressure_eq20
+
+#: the paper's approximate pressures (non-periodic, docs/theory/wavy.md (W29)): method name -> kernel
+#: kernel(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics) -> p/p*
+APPROXIMATE: dict[str, Callable[..., np.ndarray]] = {
+    "approximate_eq18": approximate_pressure_eq18,
+    "approximate_eq20": approximate_pressure_eq20,
+}
+#: the exact methods: the default first
+SERIES_METHODS: tuple[str, ...] = ("auto", "series")
+#: every method the family offers, in the order a recipe lists them
+METHODS: tuple[str, ...] = (*SERIES_METHODS, *APPROXIMATE)
+
+_SERIES_ROUTE = "Chebyshev series (periodic, eq. 10-12) or Bessel series (non-periodic, eq. 14), length from rtol"
+_AUTO_ROUTE = ("; auto: pressure of a narrow periodic contact by the non-periodic series where the periodic "
+               "correction is below rtol (validity = 3)")
+
+
+def approximation(method: str) -> Callable[..., np.ndarray] | None:
+    """The approximate-pressure kernel a method selects, or None for the exact series methods."""
+    return APPROXIMATE.get(_known(method))
+
+
+def substitutes(method: str) -> bool:
+    """Whether the method takes a narrow periodic contact's pressure from the non-periodic series
+    where that is within rtol, docs/theory/wavy.md (W26) (method ``auto`` only)."""
+    return _known(method) == "auto"
+
+
+def resolve(method: str, rtol: float) -> tuple[str, str]:
+    """(route, accuracy) of a method at tolerance rtol, as written into every field's attributes."""
+    if approximation(method) is not None:
+        return (f"the paper's approximate {method.removeprefix('approximate_')} (inaccurate; for comparison only)",
+                "not controlled: see the exact series")
+    return (_SERIES_ROUTE + (_AUTO_ROUTE if substitutes(method) else ""),
+            f"series error below rtol = {rtol:g}; per case in error_estimate, flagged in converged")
+
+
+def _known(method: str) -> str:
+    if method not in METHODS:
+        raise ValueError(f"unknown wavy method {method!r}; allowed: {', '.join(METHODS)}")
+    return method
