@@ -174,7 +174,7 @@ def _graded(cfg: Config) -> dict:
     k, nu, E0, c0, a = 0.5, 0.3, 1e9, 1e-3, 1e-3
     kw = dict(k=k, nu=nu, E0=E0, c0=c0)
     n, A = P.parabolic(0.01)
-    prof = P.PowerLaw(n, A)
+    prof = P.PowerLaw(A=A, n=n)
     r_in, r_all = np.linspace(0.0, 0.999, m) * a, np.linspace(0.01, 3.0, m) * a
     radii = np.linspace(0.1, 2.0, m) * a
     loads = np.linspace(0.01, 0.99, max(5, m // 10))   # one bisection (~2 ms) per load on the integral route

@@ -41,7 +41,7 @@ def test_scalar_parameters_become_scalar_coordinates():
 
 
 def test_every_variable_has_units_and_long_name():
-    for name, scen in REGISTRY.items():
+    for scen in REGISTRY.values():
         for var in scen.variables:
             assert var.long_name
             assert var.flag_values or var.units_in(False) and var.units_in(True)

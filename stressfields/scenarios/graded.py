@@ -9,13 +9,15 @@ the paraboloid n = 2, A = 1/(2R) and the cone n = 1, A = tan(theta)); "quadratur
 MDR integral rules for the profile object (mandatory for a tabulated profile), with the recipe's
 rtol. Defaults: nu = 0.3, k = 0.5, c0 = 1 m (E0 is then the modulus at 1 m depth; only the
 combination E0/c0^k enters), r/a = 0.
+
+This module declares; the numerics are the entry points of ``physics.graded.fields`` (one per
+scenario), and the route table is ``physics.graded.resolve``.
 """
 from __future__ import annotations
 
 import numpy as np
 
 from ..physics import graded as gp
-from ..physics.graded import adhesive as gad, normal as gno, tangential as gtg
 from .base import ARRAY, STR, Parameter, Scenario, Variable, nonfinite_flag
 
 REFERENCE = ("M. Hess, V. L. Popov, Method of dimensionality reduction in contact mechanics and friction: "
@@ -59,79 +61,35 @@ VALIDITY = dict(dtype="int8", flag_values=(0, 1, 2), flag_meanings=("finite", "u
 
 
 def _f(p, key):
-    return np.asarray(p[key], dtype=float)
+    """The value as a float array; None where the block does not carry it (a field that does not
+    depend on a swept parameter is evaluated without it)."""
+    v = p.get(key)
+    return None if v is None else np.asarray(v, dtype=float)
 
 
-def _power(p):
-    """(n, A_n) of the closed forms for the parabolic, conical and power-law profiles (eqs. 7, 16, 25)."""
+def _r(p):
+    """The absolute radial coordinate r = (r/a) a of the physics."""
+    return None if p.get("r") is None or p.get("a") is None else _f(p, "r") * _f(p, "a")
+
+
+def _indenter(p):
+    """The recipe's profile as the physics' description (kind + geometry arrays)."""
     kind = p["profile"]
-    if kind == "parabolic":
-        return gp.parabolic(_f(p, "R"))
-    if kind == "conical":
-        return gp.conical(_f(p, "tan_theta"))
-    return _f(p, "n"), _f(p, "A")
-
-
-def _make_profile(kind, p, *geo):
     if kind == "tabulated":
-        return gp.Tabulated(np.asarray(p["profile_r"]), np.asarray(p["profile_f"]))
+        return gp.Indenter.tabulated(p["profile_r"], p["profile_f"])
     if kind == "parabolic":
-        return gp.PowerLaw.parabolic(*geo)
+        return gp.Indenter.parabolic(_f(p, "R"))
     if kind == "conical":
-        return gp.PowerLaw.conical(*geo)
-    return gp.PowerLaw(*geo)
+        return gp.Indenter.conical(_f(p, "tan_theta"))
+    return gp.Indenter.power_law(A=_f(p, "A"), n=_f(p, "n"))
 
 
-def _per_profile(p, fn):
-    """fn(profile, q) for each profile object of the block (quadrature route); fn returns an array or a
-    tuple of arrays.
-
-    The quadrature kernels take one profile object, so a swept geometry (R, n, ...) is looped over;
-    each call sees the parameters sliced to its geometry value, so no point is computed twice.
-    """
-    keys = {"parabolic": ("R",), "conical": ("tan_theta",), "power_law": ("n", "A"), "tabulated": ()}[p["profile"]]
-    geo = [np.asarray(p[key], dtype=float) for key in keys]
-    if all(g.ndim == 0 for g in geo):
-        return fn(_make_profile(p["profile"], p, *map(float, geo)), p)
-    gshape = np.broadcast_shapes(*(g.shape for g in geo))
-    geo = [np.broadcast_to(g, gshape) for g in geo]
-    results = []
-    for idx in np.ndindex(gshape):
-        sl = tuple(slice(i, i + 1) if s > 1 else slice(None) for i, s in zip(idx, gshape))
-        q = {key: (v[tuple(s if m > 1 else slice(None) for s, m in zip(sl, v.shape))]
-                   if isinstance(v, np.ndarray) and v.ndim == len(gshape) else v) for key, v in p.items()}
-        res = fn(_make_profile(p["profile"], p, *(float(g[idx]) for g in geo)), q)
-        many = isinstance(res, tuple)
-        results.append((sl, tuple(map(np.asarray, res)) if many else (np.asarray(res),)))
-    outs = []
-    for j in range(len(results[0][1])):
-        shape = np.broadcast_shapes(gshape, *(r[j].shape for _, r in results))
-        out = np.empty(shape, dtype=np.result_type(*(r[j] for _, r in results)))
-        for sl, res in results:
-            out[sl] = res[j]
-        outs.append(out)
-    return tuple(outs) if many else outs[0]
-
-
-def _tip_singular(prof, k):
-    """Is the pressure unbounded at r = 0? For f = A r^n when n + k <= 1 (Phi(0) of docs/theory/graded.md (G18)); for a
-    spline tip (finite slope f'(0)) when k = 0 and f'(0) != 0, as for the cone."""
-    if isinstance(prof, gp.PowerLaw):
-        return prof.n + k <= 1.0
-    # a spline through a smooth tip keeps a rounding-level slope at 0: that is no cone
-    slope = abs(float(prof.df(0.0))) * prof.r_max / float(prof.f(prof.r_max))
-    return (k == 0.0) & (slope > 1e-8)
-
-
-def _centre(r, a, prof, k, compute, fill):
-    """compute(r) with the points r = 0 of an unbounded centre pressure set to ``fill``.
-
-    The quadrature kernels do not converge there (the integral diverges); the closed forms return +inf.
-    """
-    sing = (r == 0.0) & _tip_singular(prof, k)
-    if not np.any(sing):
-        return compute(r)
-    return np.where(sing, fill, compute(np.where(sing, 0.5 * a, r)))
+def _fields(entry, known, names, p, options, **values):
+    """entry(the requested names among ``known``, the indenter, values, method, rtol); {} if none."""
+    wanted = [n for n in names if n in known]
+    if not wanted:          # (a block holding only flags may lack the geometry)
+        return {}
+    return entry(wanted, _indenter(p), **values, method=options["method"], rtol=options["rtol"])
 
 
 def _check_profile(values, method):
@@ -192,37 +150,9 @@ N_VARS = (
 )
 
 
-def _quadrature(options, p):
-    return options["method"] == "quadrature" or p["profile"] == "tabulated"
-
-
 def _evaluate_normal(names, p, options):
-    rtol = options["rtol"]
-    a = _f(p, "a")
-    out = {}
-    mat = lambda q: dict(k=_f(q, "k"), nu=_f(q, "nu"), E0=_f(q, "E0"), c0=_f(q, "c0"))  # noqa: E731
-    r = lambda q: _f(q, "r") * _f(q, "a")                                                # noqa: E731
-    if _quadrature(options, p):
-        quad = {
-            "kappa": lambda prof, q: gno.depth_quad(_f(q, "a"), prof, k=_f(q, "k"), rtol=rtol) / prof.f(_f(q, "a")),
-            "depth": lambda prof, q: gno.depth_quad(_f(q, "a"), prof, k=_f(q, "k"), rtol=rtol),
-            "normal_force": lambda prof, q: gno.normal_force_quad(_f(q, "a"), prof, **mat(q), rtol=rtol),
-            "pressure": lambda prof, q: _centre(r(q), _f(q, "a"), prof, _f(q, "k"), lambda rr: gno.pressure_quad(
-                rr, _f(q, "a"), prof, **mat(q), rtol=rtol), np.inf),
-            "uz": lambda prof, q: gno.surface_displacement_quad(r(q), _f(q, "a"), prof, k=_f(q, "k"), rtol=rtol),
-        }
-        out = {n: _per_profile(p, quad[n]) for n in names if n in quad}
-    else:
-        n, A_n = _power(p)
-        k = _f(p, "k")
-        closed = {
-            "kappa": lambda: gp.kappa(n, k) + 0.0 * a,
-            "depth": lambda: gno.depth(a, k=k, n=n, A_n=A_n),
-            "normal_force": lambda: gno.normal_force(a, **mat(p), n=n, A_n=A_n),
-            "pressure": lambda: gno.pressure(r(p), a, **mat(p), n=n, A_n=A_n),
-            "uz": lambda: gno.surface_displacement(r(p), a, k=k, n=n, A_n=A_n),
-        }
-        out = {n: closed[n]() for n in names if n in closed}
+    out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, a=_f(p, "a"), r=_r(p), k=_f(p, "k"),
+                  nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
     if "validity" in names:
         out["validity"] = nonfinite_flag(*(out[n] for n in ("pressure", "uz") if n in out))
     return out
@@ -234,10 +164,7 @@ def _check_normal(values, physical, method):
 
 def route(values, method, rtol):
     """Closed forms of the paper for power-law profiles; the MDR quadrature for tabulated ones."""
-    if method == "quadrature" or values.get("profile") == "tabulated":
-        return ("quadrature of the MDR rules (eq. 5, 10-15, 27-31, 41-43)",
-                f"relative error below rtol = {rtol:g}")
-    return "closed form (Tables 1-3)", "double-precision rounding (relative error about 1e-13)"
+    return gp.resolve(values.get("profile", PROFILE.default), method, rtol)
 
 
 CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
@@ -277,80 +204,15 @@ AD_VARS = (
 )
 
 
-def _critical_closed(p, mode):
-    n, A_n = _power(p)
-    k = _f(p, "k")
-    ok = 2.0 * n + k - 1.0 > 0.0            # Table 3: a_c exists only for n > (1-k)/2
-    state = gad.critical_state(k=k, nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"), n=np.where(ok, n, 2.0),
-                               A_n=A_n, delta_gamma=_f(p, "delta_gamma"), mode=mode)
-    return tuple(np.where(ok, s, np.nan) for s in state)
-
-
-def _critical_quad(p, mode, rtol):
-    def one(prof, q):
-        kw = dict(k=_f(q, "k"), nu=_f(q, "nu"), E0=_f(q, "E0"), c0=_f(q, "c0"), delta_gamma=_f(q, "delta_gamma"))
-        shape = np.broadcast_shapes(*(np.shape(v) for v in kw.values()))
-        nan = np.full(shape, np.nan)
-        if isinstance(prof, gp.Tabulated):
-            bracket, exists = (prof.r_max * 1e-9, prof.r_max), np.ones(shape, bool)
-        else:     # bracket around the closed-form root; the root itself comes from the MDR rules
-            a_c = _critical_closed({**q, "profile": "power_law", "n": prof.n, "A": prof.A_n}, mode)[0]
-            exists = np.broadcast_to(~np.isnan(a_c), shape)
-            if not exists.any():
-                return nan, nan, nan
-            bracket = (np.nanmin(a_c) / 4.0, np.nanmax(a_c) * 4.0)
-        try:
-            state = gad.critical_state_quad(prof, mode=mode, a_bracket=bracket, rtol=rtol, **kw)
-            return tuple(np.where(exists, s, np.nan) for s in state)
-        except ValueError:      # some point has no root in the bracket: solve point by point, NaN there
-            out = [nan.copy() for _ in range(3)]
-            for idx in zip(*np.nonzero(exists)) if shape else [()]:
-                try:
-                    one_point = gad.critical_state_quad(prof, mode=mode, a_bracket=bracket, rtol=rtol,
-                                                        **{key: np.broadcast_to(v, shape)[idx]
-                                                           for key, v in kw.items()})
-                except ValueError:
-                    continue
-                for o, v in zip(out, one_point):
-                    o[idx] = v
-            return tuple(out)
-    return _per_profile(p, one)
-
-
 def _evaluate_adhesive(names, p, options):
-    out = {}
-    rtol = options["rtol"]
-    quad = _quadrature(options, p)
-    mat = lambda q: dict(k=_f(q, "k"), nu=_f(q, "nu"), E0=_f(q, "E0"), c0=_f(q, "c0"),  # noqa: E731
-                         delta_gamma=_f(q, "delta_gamma"))
-    if {"depth", "normal_force", "pressure"} & set(names):
-        if quad:
-            fns = {"depth": lambda prof, q: gad.depth_quad(_f(q, "a"), prof, **mat(q), rtol=rtol),
-                   "normal_force": lambda prof, q: gad.normal_force_quad(_f(q, "a"), prof, **mat(q), rtol=rtol),
-                   "pressure": lambda prof, q: _centre(
-                       _f(q, "r") * _f(q, "a"), _f(q, "a"), prof, _f(q, "k"),
-                       lambda rr: gad.pressure_quad(rr, _f(q, "a"), prof, **mat(q), rtol=rtol), np.inf)}
-            out.update({n: _per_profile(p, fns[n]) for n in names if n in fns})
-        else:
-            n, A_n = _power(p)
-            a = _f(p, "a")
-            fns = {"depth": lambda: gad.depth(a, **mat(p), n=n, A_n=A_n),
-                   "normal_force": lambda: gad.normal_force(a, **mat(p), n=n, A_n=A_n),
-                   "pressure": lambda: gad.pressure(_f(p, "r") * a, a, **mat(p), n=n, A_n=A_n)}
-            out.update({n: fns[n]() for n in names if n in fns})
-    crit = ("critical_radius", "critical_depth", "critical_force")
-    if set(crit) & set(names):
-        control = np.asarray(p["control"])
-        results = None
-        for mode in ("fixed_load", "fixed_grips"):
-            if not np.any(control == mode):
-                continue
-            state = _critical_quad(p, mode, rtol) if quad else _critical_closed(p, mode)
-            results = state if results is None else tuple(np.where(control == mode, s, r)
-                                                          for s, r in zip(state, results))
-        out.update({n: v for n, v in zip(crit, results) if n in names})
-        if "critical_validity" in names:
-            out["critical_validity"] = np.where(np.isnan(results[0]), np.int8(1), np.int8(0))
+    wanted = list(names)
+    if "critical_validity" in names and "critical_radius" not in names:
+        wanted.append("critical_radius")        # the flag is read off a_c
+    out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, a=_f(p, "a"), r=_r(p),
+                  k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"), delta_gamma=_f(p, "delta_gamma"),
+                  mode=p.get("control"))
+    if "critical_validity" in names:
+        out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
     if "validity" in names:
         out["validity"] = nonfinite_flag(out["pressure"]) if "pressure" in out else np.int8(0)
     return out
@@ -360,7 +222,8 @@ GRADED_ADHESIVE = Scenario(
     name="graded_adhesive",
     summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
             "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
-    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL), variables=AD_VARS,
+    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL),
+    variables=AD_VARS,
     evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     default_variables=("depth", "normal_force", "pressure", "critical_radius", "critical_depth", "critical_force"),
 )
@@ -427,93 +290,12 @@ def _pair(p):
 
 
 def _evaluate_tangential(names, p, options):
-    rtol = options["rtol"]
-    strict = p["uncoupled_approximation"] == "reject"
-    quad = _quadrature(options, p)
-    out = {}
-
-    def pair(q):
-        k, nu, e0, e2, nu2 = _pair(q)
-        return dict(k=k, nu=nu, E0=e0, E0_2=e2, nu_2=nu2)
-
-    def pk(q):
-        return {**pair(q), "require_decoupled": strict}
-
-    def dmax(q, prof=None):
-        if prof is None:
-            n, A_n = _power(q)
-            return gtg.max_tangential_displacement(_f(q, "a"), mu=_f(q, "mu"), n=n, A_n=A_n, **pk(q))
-        ratio = gtg.stiffness_ratio(**pk(q))
-        return _f(q, "mu") * ratio * gno.depth_quad(_f(q, "a"), prof, k=_f(q, "k"), rtol=rtol)
-
-    if quad:
-        # c/a and F_N(c)/F_N(a) do not depend on the elastic constants: nominal ones are passed where the
-        # group does not carry the material (k alone matters)
-        nominal = dict(nu=0.0, E0=1.0, c0=1.0)
-
-        def stick(prof, q):
-            # the bisection resolves c/a only to ~eps^(1/(n+k+1)) near gross slip: fx = 1 is c = 0 exactly
-            fx = _f(q, "fx")
-            c = gtg.stick_radius_quad(_f(q, "a"), fx, prof, k=_f(q, "k"), **nominal, rtol=rtol)
-            return np.where(fx >= 1.0, 0.0, c)
-
-        def shear(prof, q):
-            a, mu, r, k = _f(q, "a"), _f(q, "mu"), _f(q, "r") * _f(q, "a"), _f(q, "k")
-            c = stick(prof, q)
-            kw = {**pair(q), "c0": _f(q, "c0"), "rtol": rtol}
-
-            def tau(rr):
-                pc = gno.pressure_quad(rr, np.where(c > 0, c, a), prof, **kw)
-                return mu * (gno.pressure_quad(rr, a, prof, **kw) - np.where(c > 0, pc, 0.0))
-            # at an unbounded centre: +inf in gross slip, not evaluated (NaN, flagged) under partial slip
-            return _centre(r, a, prof, k, tau, np.where(c > 0, np.nan, np.inf))
-
-        def force_ratio(prof, q):
-            # invert delta_x = delta_x,max (1 - g(c)/g(a)) (eq. 42) for c by bisection, then
-            # F_x/(mu F_N) = 1 - F_N(c)/F_N(a) (eq. 45 integrated)
-            a, k = _f(q, "a"), _f(q, "k")
-            D = np.minimum(_f(q, "delta_x") / dmax(q, prof), 1.0)
-            target = gno.depth_quad(a, prof, k=k, rtol=rtol) * (1.0 - D)
-            lo, hi = np.zeros(np.shape(target)), np.ones(np.shape(target))
-            for _ in range(56):
-                mid = 0.5 * (lo + hi)
-                below = gno.depth_quad(np.maximum(mid * a, 1e-300), prof, k=k, rtol=rtol) < target
-                lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
-            c = 0.5 * (lo + hi) * a
-            fa = gno.normal_force_quad(a, prof, k=k, **nominal, rtol=rtol)
-            fc = gno.normal_force_quad(np.where(c > 0, c, a), prof, k=k, **nominal, rtol=rtol)
-            return np.where(D >= 1.0, 1.0, 1.0 - np.where(c > 0, fc, 0.0) / fa)
-
-        fns = {
-            "stick_radius": lambda prof, q: stick(prof, q) / _f(q, "a"),
-            "tangential_displacement": lambda prof, q: gtg.tangential_displacement_quad(
-                _f(q, "a"), _f(q, "fx"), prof, mu=_f(q, "mu"), **pk(q), rtol=rtol),
-            "max_tangential_displacement": lambda prof, q: dmax(q, prof),
-            "force_ratio": force_ratio,
-            "normal_force": lambda prof, q: gno.normal_force_quad(_f(q, "a"), prof, c0=_f(q, "c0"), **pair(q),
-                                                                  rtol=rtol),
-            "shear_traction": shear,
-        }
-        out.update({n: _per_profile(p, fns[n]) for n in names if n in fns})
-    elif {"stick_radius", "tangential_displacement", "max_tangential_displacement", "force_ratio", "normal_force",
-          "shear_traction"} & set(names):        # (a group holding only `coupling` has no geometry)
-        n, A_n = _power(p)
-        a = lambda: _f(p, "a")  # noqa: E731
-        fns = {
-            "stick_radius": lambda: gtg.stick_radius(a(), _f(p, "fx"), k=_f(p, "k"), n=n) / a(),
-            "tangential_displacement": lambda: gtg.tangential_displacement(a(), _f(p, "fx"), mu=_f(p, "mu"), n=n,
-                                                                           A_n=A_n, **pk(p)),
-            "max_tangential_displacement": lambda: dmax(p),
-            "force_ratio": lambda: gtg.force_ratio_from_displacement(
-                np.minimum(_f(p, "delta_x") / dmax(p), 1.0), k=_f(p, "k"), n=n),
-            "normal_force": lambda: gtg.normal_force(a(), c0=_f(p, "c0"), n=n, A_n=A_n, **pair(p)),
-            "shear_traction": lambda: gtg.shear_traction(_f(p, "r") * a(), a(), _f(p, "fx"), mu=_f(p, "mu"),
-                                                         c0=_f(p, "c0"), n=n, A_n=A_n, **pk(p)),
-        }
-        out.update({n: fns[n]() for n in names if n in fns})
+    k, nu, e0, e2, nu2 = _pair(p)
+    out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, a=_f(p, "a"), r=_r(p),
+                  fx=_f(p, "fx"), delta_x=_f(p, "delta_x"), mu=_f(p, "mu"), c0=_f(p, "c0"), k=k, nu=nu, E0=e0,
+                  E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
     if "coupling" in names:
-        q = pair(p)
-        ok = gp.tangential_decoupled(q["k"], q["nu"], E0=q["E0"], E0_2=q["E0_2"], nu_2=q["nu_2"])
+        ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
         out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
     if "validity" in names:
         out["validity"] = nonfinite_flag(out["shear_traction"]) if "shear_traction" in out else np.int8(0)

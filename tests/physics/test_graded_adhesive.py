@@ -27,7 +27,7 @@ def test_reference_points(case):
     k, nu, n, An = case["k"], nu_of(case), case["n"], float(case["A_n"])
     assert float(case["delta_gamma"]) == DG
     m = dict(k=k, nu=nu, E0=E0, c0=C0, delta_gamma=DG)
-    prof = P.PowerLaw(n, An)
+    prof = P.PowerLaw(A=An, n=n)
     at = case["at_a"]
     a = float(at["a"])
     dl = float(at["delta_l_max"])
@@ -126,9 +126,9 @@ def test_probes_closed_form_vs_quadrature(k):
         else:
             r_ = r
         p = AD.pressure(r_, a, n=n, A_n=An, **m)
-        pq = AD.pressure_quad(r_, a, P.PowerLaw(n, An), rtol=RTOL, **m)
+        pq = AD.pressure_quad(r_, a, P.PowerLaw(A=An, n=n), rtol=RTOL, **m)
         assert np.allclose(p, pq, rtol=10 * RTOL, atol=0)
-        assert AD.depth(a, n=n, A_n=An, **m) == pytest.approx(AD.depth_quad(a, P.PowerLaw(n, An), rtol=RTOL, **m),
+        assert AD.depth(a, n=n, A_n=An, **m) == pytest.approx(AD.depth_quad(a, P.PowerLaw(A=An, n=n), rtol=RTOL, **m),
                                                               rel=10 * RTOL)
 
 
@@ -163,7 +163,7 @@ def test_broadcasting_and_domain():
     with pytest.raises(ValueError, match="k = "):
         AD.pressure(0.1, 0.6, **(kw | dict(k=-0.5)))
     with pytest.raises(ValueError, match="a_bracket"):
-        AD.critical_state_quad(P.PowerLaw(2.0, 0.3), k=0.5, nu=0.3, E0=E0, c0=C0, delta_gamma=DG,
+        AD.critical_state_quad(P.PowerLaw(A=0.3, n=2.0), k=0.5, nu=0.3, E0=E0, c0=C0, delta_gamma=DG,
                                a_bracket=(1e-3, 2e-3))
 
 

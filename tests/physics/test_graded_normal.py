@@ -33,7 +33,7 @@ def kw(case):
 @pytest.mark.parametrize("case", REF["normal"], ids=lambda c: f"{c['profile']}-k{c['k']}-nu{c['nu']}")
 def test_reference_points(case):
     n, An = case["n"], float(case["A_n"])
-    prof = P.PowerLaw(n, An)
+    prof = P.PowerLaw(A=An, n=n)
     a = float(case["a"])
     assert a == A
     d_ref, F_ref = float(case["d"]["value_str"]), float(case["F_N"]["value_str"])
@@ -111,7 +111,7 @@ PROFILES = [(1.0, 0.3), (1.5, 0.9), (2.0, 0.3), (3.0, 0.9)]
 @pytest.mark.parametrize("k", PROBE_K)
 @pytest.mark.parametrize("n, An", PROFILES)
 def test_closed_form_vs_quadrature_probes(k, n, An):
-    prof = P.PowerLaw(n, An)
+    prof = P.PowerLaw(A=An, n=n)
     m = dict(k=k, nu=0.3, E0=E0, c0=C0)
     r = np.array([1e-4, 0.25, 0.9, 0.9999]) * A
     assert rel(N.pressure(r, A, n=n, A_n=An, **m), N.pressure_quad(r, A, prof, rtol=RTOL, **m)) < 10 * RTOL
@@ -143,7 +143,7 @@ def test_pressure_centre_limit():
         for n, An in [(1.5, 0.9), (2.0, 0.3), (3.0, 0.9)]:
             m = dict(k=k, nu=0.3, E0=E0, c0=C0)
             p0 = N.pressure(0.0, A, n=n, A_n=An, **m)
-            assert p0 == pytest.approx(N.pressure_quad(0.0, A, P.PowerLaw(n, An), rtol=RTOL, **m), rel=1e-9)
+            assert p0 == pytest.approx(N.pressure_quad(0.0, A, P.PowerLaw(A=An, n=n), rtol=RTOL, **m), rel=1e-9)
             # p(r) - p(0) = O((r/a)^(n+k-1)) (and O((r/a)^2) once that exponent exceeds 2)
             tol = 10 * 1e-9 ** min(n + k - 1, 2)
             assert p0 == pytest.approx(N.pressure(1e-9 * A, A, n=n, A_n=An, **m), rel=tol)
@@ -163,7 +163,7 @@ def test_printed_table2_uz_is_wrong_and_corrected_form_right():
     pref = np.cos(k * np.pi / 2) * B(0.5, (1 + k) / 2) * tan / (2 * np.pi)
     printed = pref * (A * Binc(z, (1 + k) / 2, (1 - k) / 2) - r * Binc(z, (3 + k) / 2, (1 - k) / 2))
     corrected = pref * (A * Binc(z, (1 + k) / 2, (1 - k) / 2) - r * Binc(z, (2 + k) / 2, (1 - k) / 2))
-    quadrature = N.surface_displacement_quad(r, A, P.PowerLaw(1.0, tan), k=k, rtol=RTOL)
+    quadrature = N.surface_displacement_quad(r, A, P.PowerLaw(A=tan, n=1.0), k=k, rtol=RTOL)
     assert rel(corrected, quadrature) < 1e-9
     assert np.min(np.abs(printed / quadrature - 1)) > 0.2
 
@@ -197,7 +197,7 @@ def test_printed_table2_cone_pressure_is_undefined_at_k0():
 @pytest.mark.parametrize("k", [0.0, 1e-6, 0.5, 0.999])
 @pytest.mark.parametrize("n", [0.5, 1.0, 1.5, 2.0, 3.0])
 def test_transform_and_inverse(k, n):
-    prof = P.PowerLaw(n, 0.9)
+    prof = P.PowerLaw(A=0.9, n=n)
     x = np.array([1e-3, 0.1, 0.6, 2.0])
     g = P.g_quad(x, prof, k=k, rtol=RTOL)
     assert rel(g, P.g_power_law(x, k=k, n=n, A_n=0.9)) < 1e-12

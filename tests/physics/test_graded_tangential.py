@@ -37,8 +37,9 @@ def test_reference_points(case):
     assert rel(T.tangential_displacement(A, F, **m), d_ref) < CF
     assert rel(T.force_ratio_from_displacement(D_ref, k=k, n=n), F) < CF
     # quadrature route: bisection on eqs. (41)-(43)
-    assert rel(T.stick_radius_quad(A, F, P.PowerLaw(n, An), k=k, nu=nu, E0=E0, c0=C0, rtol=RTOL) / A, c_ref) < 10 * RTOL
-    assert rel(T.tangential_displacement_quad(A, F, P.PowerLaw(n, An), k=k, nu=nu, mu=MU, E0=E0, c0=C0,
+    prof = P.PowerLaw(A=An, n=n)
+    assert rel(T.stick_radius_quad(A, F, prof, k=k, nu=nu, E0=E0, c0=C0, rtol=RTOL) / A, c_ref) < 10 * RTOL
+    assert rel(T.tangential_displacement_quad(A, F, prof, k=k, nu=nu, mu=MU, E0=E0, c0=C0,
                                               rtol=RTOL), d_ref) < 10 * RTOL
 
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import _quad
+from .. import quadrature
 from .material import cos_half_pi_k
 
 
@@ -60,7 +60,7 @@ def _singular_piece(x0, x1, delta, alpha, p_sing, integrand_x, rtol, toward_left
             fx = integrand_x(x)          # (np.where branches not taken may overflow harmlessly)
         return Ls * p * jac * fx
 
-    return _quad.integrate(integrand, rtol=rtol)
+    return quadrature.integrate(integrand, rtol=rtol)
 
 
 def foundation_integral(a, fn, params, rtol, breaks=()):
@@ -76,7 +76,7 @@ def foundation_integral(a, fn, params, rtol, breaks=()):
             x = x0 + L * t
             return L * x ** k * fn(x, **P)
 
-        total = total + _quad.integrate(integrand, rtol=rtol)
+        total = total + quadrature.integrate(integrand, rtol=rtol)
     return total
 
 

@@ -14,15 +14,16 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import betainc
 
+from ..roots import bisect
 from . import _mdr, normal
 from ._validate import check_k, check_mode, check_positive
 from .material import c_N_star
-from .profiles import dg_quad, kappa
+from .profiles import Tabulated, dg_quad, kappa
 
 __all__ = ["adhesion_constant", "delta_l_max", "depth", "normal_force", "pressure",
            "surface_displacement", "critical_radius", "critical_depth", "critical_force",
            "critical_state", "depth_quad", "normal_force_quad", "pressure_quad",
-           "critical_state_quad"]
+           "critical_state_quad", "critical_state_or_nan", "critical_state_search"]
 
 
 def adhesion_constant(k, mode="fixed_load"):
@@ -213,18 +214,63 @@ def critical_state_quad(profile, *, k, nu, E0, c0, delta_gamma, mode="fixed_load
         cint = cN * _mdr.foundation_integral(a, lambda x, k: np.ones_like(x), {"k": k}, rtol, profile.breaks)
         return 2.0 * dd * cint - 2.0 * cN * a ** k * dl
 
-    lo = np.full(k.shape, np.log(a_bracket[0]))
-    hi = np.full(k.shape, np.log(a_bracket[1]))
-    s_lo = slope(np.exp(lo))
-    if np.any(s_lo >= 0) or np.any(slope(np.exp(hi)) <= 0):
+    lo, hi = (np.full(k.shape, float(end)) for end in a_bracket)
+    if np.any(slope(lo) >= 0) or np.any(slope(hi) <= 0):
         raise ValueError(f"a_bracket = {a_bracket!r} does not bracket the critical contact radius")
-    for _ in range(64):        # 2^-64 of log(hi/lo): far below double precision in a_c
-        mid = 0.5 * (lo + hi)
-        neg = slope(np.exp(mid)) < 0
-        lo = np.where(neg, mid, lo)
-        hi = np.where(neg, hi, mid)
-    a_c = np.exp(0.5 * (lo + hi))
+    # 2^-64 of log(hi/lo): far below double precision in a_c; the slope rises through 0 at a_c
+    a_c = bisect(lambda a: slope(a) < 0, lo, hi, 64, geometric=True)
     d_c = depth_quad(a_c, profile, k=k, nu=nu, E0=E0, c0=c0, delta_gamma=dgam, E0_2=E0_2, nu_2=nu_2, rtol=rtol)
     F_c = normal_force_quad(a_c, profile, k=k, nu=nu, E0=E0, c0=c0, delta_gamma=dgam,
                             E0_2=E0_2, nu_2=nu_2, rtol=rtol)
     return a_c, d_c, F_c
+
+
+# --------------------------------------------------------------------------- pull-off of any profile
+
+def critical_state_or_nan(*, k, nu, E0, c0, n, A_n, delta_gamma, mode="fixed_load", E0_2=np.inf, nu_2=None):
+    """:func:`critical_state` with NaN where no critical point exists (n <= (1-k)/2, Table 3,
+    docs/theory/graded.md (G27)) instead of an error: a sweep over n may cross that bound."""
+    k = np.asarray(k, float)
+    n = np.asarray(n, float)
+    ok = 2.0 * n + k - 1.0 > 0.0
+    state = critical_state(k=k, nu=nu, E0=E0, c0=c0, n=np.where(ok, n, 2.0), A_n=A_n,
+                           delta_gamma=delta_gamma, mode=mode, E0_2=E0_2, nu_2=nu_2)
+    return tuple(np.where(ok, s, np.nan) for s in state)
+
+
+def critical_state_search(profile, *, k, nu, E0, c0, delta_gamma, mode="fixed_load", rtol=1e-10):
+    """(a_c, d_c, F_c) of :func:`critical_state_quad` with the bracket chosen for the profile and
+    NaN where there is no critical point (docs/theory/graded.md (G42)).
+
+    A power law is bracketed around its closed-form a_c (eq. 32; the root itself comes from the MDR
+    rules); a tabulated profile by its whole range, so a root beyond the table is NaN, never
+    extrapolated.  Where one point of the block has no root in the bracket, the block is solved
+    point by point.
+    """
+    kw = dict(k=k, nu=nu, E0=E0, c0=c0, delta_gamma=delta_gamma)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in kw.values()))
+    nan = np.full(shape, np.nan)
+    if isinstance(profile, Tabulated):
+        bracket, exists = (profile.r_max * 1e-9, profile.r_max), np.ones(shape, bool)
+    else:
+        a_c = critical_state_or_nan(n=np.asarray(profile.n, float), A_n=np.asarray(profile.A, float),
+                                    mode=mode, **kw)[0]
+        exists = np.broadcast_to(~np.isnan(a_c), shape)
+        if not exists.any():
+            return nan, nan, nan
+        bracket = (np.nanmin(a_c) / 4.0, np.nanmax(a_c) * 4.0)
+    try:
+        state = critical_state_quad(profile, mode=mode, a_bracket=bracket, rtol=rtol, **kw)
+        return tuple(np.where(exists, s, np.nan) for s in state)
+    except ValueError:
+        pass
+    out = [nan.copy() for _ in range(3)]
+    for idx in zip(*np.nonzero(exists)) if shape else [()]:
+        try:
+            one = critical_state_quad(profile, mode=mode, a_bracket=bracket, rtol=rtol,
+                                      **{key: np.broadcast_to(v, shape)[idx] for key, v in kw.items()})
+        except ValueError:              # no root in the bracket: NaN there
+            continue
+        for o, v in zip(out, one):
+            o[idx] = v
+    return tuple(out)

@@ -15,7 +15,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.special import betainc
 
-from . import _mdr, _quad
+from .. import quadrature
+from . import _mdr
 from ._validate import check_k, check_positive
 from .material import c_N_star, cos_half_pi_k
 from .profiles import dg_quad, g_quad, kappa
@@ -90,7 +91,7 @@ def _cosh_integral(T, n, k):
             t = Tb * u ** (1.0 / (1.0 + kb))
             return np.exp(lpre + (nb - 1.0) * (_log_cosh(t) - lcT) + kb * (_log_sinhc(t) - lcT))
 
-        out[s:s + _BLOCK] = _quad.integrate(integrand, rtol=_COSH_RTOL, level=4, max_level=11)
+        out[s:s + _BLOCK] = quadrature.integrate(integrand, rtol=_COSH_RTOL, level=4, max_level=11)
     return out
 
 

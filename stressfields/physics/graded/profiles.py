@@ -21,7 +21,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.special import beta as _B, betainc, betaincc
 
-from . import _quad
+from .. import quadrature
 from ._validate import as_array, check_k, check_positive
 from .material import cos_half_pi_k
 
@@ -58,36 +58,42 @@ def g_power_law(x, *, k, n, A_n):
 
 @dataclass(frozen=True)
 class PowerLaw:
-    """f(r) = A_n r^n for the quadrature route (which never uses kappa)."""
+    """f(r) = A r^n for the quadrature route (which never uses kappa).
 
+    Arguments in the order of ``physics.axisymmetric.profiles.PowerLaw(A, n)``; the closed-form
+    kernels call the same amplitude ``A_n``.
+    """
+
+    A: float
     n: float
-    A_n: float
 
     def __post_init__(self):
         check_positive("n", self.n)
-        check_positive("A_n", self.A_n)
+        check_positive("A", self.A)
 
     @classmethod
     def parabolic(cls, R):
-        return cls(*parabolic(float(R)))
+        n, A = parabolic(float(R))
+        return cls(A=A, n=n)
 
     @classmethod
     def conical(cls, tan_theta):
-        return cls(*conical(float(tan_theta)))
+        n, A = conical(float(tan_theta))
+        return cls(A=A, n=n)
 
     r_max = np.inf
     breaks = ()
 
     def f(self, r):
-        return self.A_n * np.abs(r) ** self.n
+        return self.A * np.abs(r) ** self.n
 
     def df(self, r):
-        return self.n * self.A_n * np.abs(r) ** (self.n - 1.0)
+        return self.n * self.A * np.abs(r) ** (self.n - 1.0)
 
     def d2f(self, r):
         if self.n == 1.0:
             return np.zeros_like(np.asarray(r, dtype=float))
-        return self.n * (self.n - 1.0) * self.A_n * np.abs(r) ** (self.n - 2.0)
+        return self.n * (self.n - 1.0) * self.A * np.abs(r) ** (self.n - 2.0)
 
 
 class Tabulated:
@@ -180,7 +186,7 @@ def _transform(x, profile, k, rtol, derivative):
     p = 2.0 / (1.0 + ke)
 
     def integrand(v, vc):
-        t, tc = _quad.power_map(v, vc, p)
+        t, tc = quadrature.power_map(v, vc, p)
         xt = xe * t
         if not derivative:
             return p * profile.df(xt) * (1.0 + t) ** (-0.5 * (1.0 - ke))
@@ -189,7 +195,7 @@ def _transform(x, profile, k, rtol, derivative):
             val = profile.df(xt) + np.where(xt > 0.0, xt * profile.d2f(xt), 0.0)
         return p * val * (1.0 + t) ** (-0.5 * (1.0 - ke))
 
-    out = _quad.integrate(integrand, rtol=rtol)
+    out = quadrature.integrate(integrand, rtol=rtol)
     return out if derivative else np.where(x > 0.0, x * out, 0.0)
 
 
@@ -223,7 +229,7 @@ def f_from_g_quad(r, g, *, k, rtol=1e-10):
     pref = (2.0 / np.pi) * cos_half_pi_k(ke) * p
 
     def integrand(v, vc):
-        t, tc = _quad.power_map(v, vc, p)
+        t, tc = quadrature.power_map(v, vc, p)
         return pref * t ** ke * g(re * t) * (1.0 + t) ** (-0.5 * (1.0 + ke))
 
-    return _quad.integrate(integrand, rtol=rtol)
+    return quadrature.integrate(integrand, rtol=rtol)

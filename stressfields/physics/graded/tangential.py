@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..roots import bisect
 from . import _mdr, normal
 from ._validate import check_interval, check_k, check_nu, check_positive
 from .material import c_N_star, c_T_star, tangential_decoupled
@@ -24,7 +25,8 @@ from .profiles import g_quad
 
 __all__ = ["stick_radius", "stiffness_ratio", "max_tangential_displacement",
            "tangential_displacement", "force_ratio_from_displacement", "shear_traction",
-           "normal_force", "stick_radius_quad", "tangential_displacement_quad"]
+           "normal_force", "stick_radius_quad", "tangential_displacement_quad",
+           "max_tangential_displacement_quad", "force_ratio_quad"]
 
 
 def _pair(k, nu, E0, E0_2, nu_2, require_decoupled):
@@ -155,13 +157,8 @@ def stick_radius_quad(a, Fx_over_muFN, profile, *, k, nu, E0, c0=1.0, E0_2=None,
         inner = _mdr.foundation_integral(c, u1d, {"k": k_, "d": d}, rtol, profile.breaks)
         return (stick + 2.0 * cN * (total - inner)) / FN_over_mu
 
-    lo, hi = np.zeros(a.shape), np.ones(a.shape)
-    for _ in range(56):                  # bisection to 2^-56 in c/a
-        mid = 0.5 * (lo + hi)
-        above = ratio(mid) > F           # ratio decreases from 1 (c = 0) to 0 (c = a)
-        lo = np.where(above, mid, lo)
-        hi = np.where(above, hi, mid)
-    return 0.5 * (lo + hi) * a
+    # bisection to 2^-56 in c/a; the ratio decreases from 1 (c = 0) to 0 (c = a)
+    return bisect(lambda s: ratio(s) > F, np.zeros(a.shape), np.ones(a.shape), 56) * a
 
 
 def tangential_displacement_quad(a, Fx_over_muFN, profile, *, k, nu, mu, E0, c0=1.0, E0_2=None,
@@ -173,3 +170,31 @@ def tangential_displacement_quad(a, Fx_over_muFN, profile, *, k, nu, mu, E0, c0=
     ratio = c_N_star(k_, nu_, E0_, c0, E0_2_, nu_2_) / c_T_star(k_, nu_, E0_, c0, E0_2_, nu_2_)
     mu = check_positive("mu", mu, allow_zero=True)
     return mu * ratio * (g_quad(a, profile, k=k_, rtol=rtol) - g_quad(c, profile, k=k_, rtol=rtol))
+
+
+def max_tangential_displacement_quad(a, profile, *, k, nu, mu, E0=None, E0_2=None, nu_2=None,
+                                     require_decoupled=True, rtol=1e-10):
+    """delta_x,max = mu (c_N/c_T) g(a) (eq. 50, docs/theory/graded.md (G34)) with g(a) by quadrature."""
+    ratio = stiffness_ratio(k=k, nu=nu, E0=E0, E0_2=E0_2, nu_2=nu_2, require_decoupled=require_decoupled)
+    return mu * ratio * normal.depth_quad(a, profile, k=k, rtol=rtol)
+
+
+def force_ratio_quad(a, delta_x, profile, *, k, nu, mu, E0=None, E0_2=None, nu_2=None,
+                     require_decoupled=True, rtol=1e-10):
+    """F_x/(mu F_N) under an imposed displacement delta_x, any profile object (1 beyond delta_x,max).
+
+    Inverts delta_x = delta_x,max (1 - g(c)/g(a)) (eq. 42, docs/theory/graded.md (G30)) for the stick
+    radius c by bisection, then F_x/(mu F_N) = 1 - F_N(c)/F_N(a) ((G32) integrated).  F_N(c)/F_N(a)
+    does not depend on the elastic constants: nominal ones are used there.
+    """
+    dmax = max_tangential_displacement_quad(a, profile, k=k, nu=nu, mu=mu, E0=E0, E0_2=E0_2, nu_2=nu_2,
+                                            require_decoupled=require_decoupled, rtol=rtol)
+    D = np.minimum(delta_x / dmax, 1.0)
+    target = normal.depth_quad(a, profile, k=k, rtol=rtol) * (1.0 - D)
+    s = bisect(lambda s: normal.depth_quad(np.maximum(s * a, 1e-300), profile, k=k, rtol=rtol) < target,
+               np.zeros(np.shape(target)), np.ones(np.shape(target)), 56)
+    c = s * a
+    nominal = dict(nu=0.0, E0=1.0, c0=1.0)
+    fa = normal.normal_force_quad(a, profile, k=k, **nominal, rtol=rtol)
+    fc = normal.normal_force_quad(np.where(c > 0, c, a), profile, k=k, **nominal, rtol=rtol)
+    return np.where(D >= 1.0, 1.0, 1.0 - np.where(c > 0, fc, 0.0) / fa)
