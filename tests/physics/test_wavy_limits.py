@@ -199,7 +199,8 @@ def test_edge_coefficients():
         v = wavy.contact_validity(w, **F3, periodic=False)
         assert abs(v["edge_phi_over_pstar"] - exact) < 1e-11
         h = 1e-5
-        dpinf = (wavy.mean_pressure(w + h, **F3, periodic=True) - wavy.mean_pressure(w - h, **F3, periodic=True)) / (2 * h * np.pi)
+        dpinf = (wavy.mean_pressure(w + h, **F3, periodic=True)
+                 - wavy.mean_pressure(w - h, **F3, periodic=True)) / (2 * h * np.pi)
         K_fd = np.sqrt(a / (2 * np.tan(a / 2))) * 2.0 * dpinf   # (1/pi) dW/da / p* = 2 d(p_inf/p*)/da
         phi, _ = wavy.pressure_shape(-1.0, w, **F3, periodic=True, rtol=1e-14)
         assert abs(phi - K_fd) < 1e-7 * max(1.0, abs(K_fd))

@@ -5,8 +5,6 @@ equations (docs/theory/wavy.md (W3), (W4); provenance in tests/data/README.md), 
 paper's series used here.
 """
 
-import json
-from pathlib import Path
 
 import numpy as np
 import pytest
