@@ -50,7 +50,8 @@ def gl_panels(a, panels=400, n=8):
 
 
 PROFILES = {"cone": ax.cone(1.0), "paraboloid": ax.paraboloid(1.0), "power_law": ax.power_law(1.0, 1.5),
-            "tabulated": ax.tabulated(np.linspace(0, 1.2, 25), np.linspace(0, 1.2, 25) ** 2 / 2 + 0.1 * np.linspace(0, 1.2, 25) ** 4)}
+            "tabulated": ax.tabulated(np.linspace(0, 1.2, 25),
+                                      np.linspace(0, 1.2, 25) ** 2 / 2 + 0.1 * np.linspace(0, 1.2, 25) ** 4)}
 
 HISTORY = [0.1, 0.3, -0.05, 0.2, 0.05, 0.15, 0.12, 0.4, -0.9, 0.1, -0.3, 0.0, 0.25]
 
@@ -215,7 +216,7 @@ def test_paper_case_cone_reversal():
         def slope(u):
             return mu * gprime * (1.0 if u > cr else (-1.0 if u > c1 else 0.0))
 
-        def I(fun):
+        def integral(fun):
             top = min(rr, 1.0)
             pts = [v for v in (c1, cr) if v < top]
             # u = r sin t removes the 1/sqrt(r^2 - u^2) endpoint
@@ -224,9 +225,11 @@ def test_paper_case_cone_reversal():
             return quad(g, 0.0, math.asin(top / rr), points=bps or None, epsabs=1e-14, epsrel=1e-13, limit=200)[0]
 
         r6 = rr ** 6
-        xx = 2 * x / (math.pi * r6) * I(lambda u: (1 + nu) * rr ** 4 - nu * (u * u * rr * rr + y * y * (3 * rr * rr - 4 * u * u)))
-        yy = 2 * nu * x / (math.pi * r6) * I(lambda u: u * u * rr * rr + y * y * (3 * rr * rr - 4 * u * u))
-        xy = y / (math.pi * r6) * I(lambda u: (1 - 2 * nu) * rr ** 4 + 2 * nu * (u * u * rr * rr + x * x * (3 * rr * rr - 4 * u * u)))
+        xx = 2 * x / (math.pi * r6) * integral(
+            lambda u: (1 + nu) * rr ** 4 - nu * (u * u * rr * rr + y * y * (3 * rr * rr - 4 * u * u)))
+        yy = 2 * nu * x / (math.pi * r6) * integral(lambda u: u * u * rr * rr + y * y * (3 * rr * rr - 4 * u * u))
+        xy = y / (math.pi * r6) * integral(
+            lambda u: (1 - 2 * nu) * rr ** 4 + 2 * nu * (u * u * rr * rr + x * x * (3 * rr * rr - 4 * u * u)))
         return xx, yy, xy
 
     pts = [(0.5, 0.3), (-0.75, 0.2), (0.85, -0.3), (0.95, 0.05), (1.3, 0.4), (0.2, 2.1)]

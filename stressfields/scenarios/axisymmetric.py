@@ -5,23 +5,26 @@ Scenarios `conical`, `parabolic` and `axisymmetric` (power law, tabulated profil
 Normalised mode (default): x, y in units of the contact radius a, stresses divided by the mean
 contact pressure p_m = F_N / (pi a^2), dp/dz by p_m / a. Physical mode (the recipe gives E):
 metres, pascals. Equations, conventions and errata: docs/theory/axisymmetric.md (A1)-(A64).
+
+This module declares and maps: recipe values -> a ``physics.axisymmetric`` profile -> one call of
+``physics.axisymmetric.fields`` (which decides the route, ``physics.axisymmetric.resolve``) -> the
+variables' units (``scales``).  The `axisymmetric_history` scenario shares the public helpers.
 """
 from __future__ import annotations
 
 import math
+from typing import Any, Mapping
 
 import numpy as np
 
 from ..physics import axisymmetric as ax
-from ..physics.invariants import principal_stresses, von_mises
-from .base import ARRAY, STR, Parameter, Scenario, Variable, nonfinite_flag
+from ..physics.axisymmetric import PRINCIPAL, STRESS
+from .base import ARRAY, STR, Parameter, Scenario, Variable
 
 REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient of hydrostatic pressure "
              "in the contact plane of axisymmetric bodies under normal and tangential loading, "
              "Forschung im Ingenieurwesen (2020)")
 
-STRESS = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz")
-PRINCIPAL = ("sigma_1", "sigma_2", "sigma_3")
 PM = "the mean contact pressure p_m = F_N/(pi a^2)"
 SPATIAL = ("y", "x")  # x last: a line along x is contiguous on disk
 
@@ -60,7 +63,7 @@ PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-d
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
 
 
-def _variables(case: tuple[str, ...], geometry: tuple[str, ...]) -> tuple[Variable, ...]:
+def variables(case: tuple[str, ...], geometry: tuple[str, ...]) -> tuple[Variable, ...]:
     """The output variables; `case` lists the non-spatial parameters, `geometry` the profile's."""
     everything = case + SPATIAL
     load = ("nu", "E", "delta") + geometry     # what fixes a, F_N and p_m
@@ -96,96 +99,20 @@ def _variables(case: tuple[str, ...], geometry: tuple[str, ...]) -> tuple[Variab
     )
 
 
-def _evaluate(make_profile):
-    """An evaluate(names, params, options) for one profile family; make_profile(params, physical)."""
+# -- evaluation: recipe values -> profile -> physics.axisymmetric.fields -> variables' units --------
 
-    def evaluate(names, p, options):
-        physical = options["physical"]
-        profile = make_profile(p, physical)
-        f = lambda key: np.asarray(p[key], dtype=float)  # noqa: E731 - only what the group has
-        if physical:
-            a = _contact_radius(profile, f("delta"))
-        else:
-            a = np.float64(1.0)
-        out: dict[str, np.ndarray] = {}
-        if "contact_radius" in names:
-            out["contact_radius"] = a
-        pm_hat = ax.mean_pressure(a, profile)          # p_m / E*
-        e_star = f("E") / (1.0 - f("nu") ** 2) if physical and ("E" in p) else None
-        if "mean_pressure" in names:
-            out["mean_pressure"] = pm_hat * e_star if physical else pm_hat
-        if "normal_force" in names:
-            out["normal_force"] = profile.normal_force(a) * e_star
-        local = [n for n in names if n not in ("contact_radius", "mean_pressure", "normal_force")]
-        if not local:
-            return out
-
-        nu, mu, ux0 = f("nu"), f("mu"), f("ux0")
-        c = ax.stick_radius(a, nu, mu, ux0, profile)
-        c_kernel, mu_kernel = c, mu
-        if profile.kind == "flat_punch":
-            # a flat punch either sticks whole or slides; sticking, its traction is the sliding one
-            # with mu E* delta replaced by G* u_x0 (eq. 20), which the kernels take as c = 0
-            stuck = (c == a) & (ux0 > 0) & (mu > 0)
-            mu_kernel = np.where(stuck, 2.0 * (1.0 - nu) / (2.0 - nu) * ux0, mu)
-            c_kernel = np.where(stuck, 0.0, c)
-        if "stick_radius" in names:
-            out["stick_radius"] = c if physical else c / a
-        spatial = [n for n in local if n != "stick_radius"]
-        if not spatial:
-            return out
-        xs, ys = (f(k) * (1.0 if physical else a) for k in ("x", "y"))
-        method = options["method"]
-        if method == "auto":
-            method = "closed" if profile.has_closed_form else "quadrature"
-        stress_scale = e_star if physical else 1.0 / pm_hat
-
-        want_stress = [n for n in names if n in STRESS]
-        if any(n in names for n in ("von_mises",) + PRINCIPAL):
-            want_stress = list(STRESS)
-        if want_stress:
-            comps = tuple(n.removeprefix("sigma_") for n in want_stress)
-            sig = ax.surface_stress(xs, ys, a, c_kernel, nu, mu_kernel, profile, components=comps, method=method,
-                                    rtol=options["rtol"])
-            stress = {f"sigma_{k}": v * stress_scale for k, v in sig.items()}
-            out.update({n: stress[n] for n in names if n in STRESS})
-            if "von_mises" in names:
-                out["von_mises"] = von_mises(*(stress[s] for s in STRESS))
-            if any(n in names for n in PRINCIPAL):
-                out.update(zip(PRINCIPAL, principal_stresses(*(stress[s] for s in STRESS))))
-        if "dpdz" in names:
-            g = ax.surface_dpdz(xs, ys, a, c_kernel, nu, mu_kernel, profile, method=method, rtol=options["rtol"])
-            out["dpdz"] = g * (e_star if physical else a / pm_hat)
-        if "region" in names:
-            out["region"] = _region(np.hypot(xs, ys), a, c, mu, ux0)
-        if "validity" in names:
-            fields = [out[n] for n in out if n in STRESS + PRINCIPAL + ("von_mises", "dpdz")]
-            out["validity"] = nonfinite_flag(*fields) if fields else np.int8(0)
-        return out
-
-    return evaluate
+def _f(p, key: str) -> np.ndarray:
+    return np.asarray(p[key], dtype=float)
 
 
-def _region(r, a, c, mu, ux0):
-    region = np.where(r > a, 0, np.where(r < c, 1, 2)).astype(np.int8)
-    no_traction = (np.asarray(mu) == 0) | (np.asarray(ux0) == 0)
-    return np.where(no_traction & (r <= a), np.int8(3), region)
-
-
-def _contact_radius(profile, delta: np.ndarray) -> np.ndarray:
-    return np.vectorize(profile.contact_radius, otypes=[float])(delta)
-
-
-def _cone(p, physical):
-    return ax.cone(math.tan(p["theta"]) if physical else 1.0)
-
-
-def _paraboloid(p, physical):
-    return ax.paraboloid(p["R"] if physical else 1.0)
-
-
-def _general(p, physical):
-    kind = p["profile"]
+def make_profile(kind: str, p: Mapping[str, Any], physical: bool) -> ax.Profile:
+    """The physics profile of a recipe (``kind`` a profile kind of ``physics.axisymmetric``).  In
+    normalised mode the geometry is the unit one: lengths are in units of a and stresses in units
+    of p_m, which the profile's scale cancels from."""
+    if kind == "cone":
+        return ax.cone(math.tan(p["theta"]) if physical else 1.0)
+    if kind == "paraboloid":
+        return ax.paraboloid(p["R"] if physical else 1.0)
     if kind == "power_law":
         return ax.power_law(p["A"] if physical else 1.0, p["n"])
     if kind == "flat_punch":
@@ -193,9 +120,69 @@ def _general(p, physical):
     return ax.tabulated(np.asarray(p["profile_r"]), np.asarray(p["profile_f"]))
 
 
-def _check_general(values, physical, method):
+def effective_modulus(p: Mapping[str, Any]) -> np.ndarray:
+    """E* = E/(1 - nu^2) of the recipe (physical mode)."""
+    return _f(p, "E") / (1.0 - _f(p, "nu") ** 2)
+
+
+def scales(p: Mapping[str, Any], physical: bool, a, profile: ax.Profile) -> tuple:
+    """The normalisation, as the (stress, dp/dz) factors from the physics' values per E* to the
+    variables' units: (E*, E*) in physical mode (Pa, Pa/m); (1/p_m, a/p_m) normalised, p_m per E*."""
+    if physical:
+        e_star = effective_modulus(p)
+        return e_star, e_star
+    pm = ax.mean_pressure(a, profile)
+    return 1.0 / pm, a / pm
+
+
+def contact(names, p: Mapping[str, Any], profile: ax.Profile, physical: bool) -> tuple[np.ndarray, dict]:
+    """The contact radius a (from delta in physical mode; 1 normalised, lengths in units of a) and
+    the requested ones of contact_radius, mean_pressure, normal_force in the variables' units."""
+    a = ax.contact_radius(profile, _f(p, "delta")) if physical else np.float64(1.0)
+    out: dict[str, np.ndarray] = {}
+    if "contact_radius" in names:
+        out["contact_radius"] = a
+    if "mean_pressure" in names:
+        pm = ax.mean_pressure(a, profile)          # p_m / E*
+        out["mean_pressure"] = pm * effective_modulus(p) if physical else pm
+    if "normal_force" in names:
+        out["normal_force"] = profile.normal_force(a) * effective_modulus(p)
+    return a, out
+
+
+def surface_point(p: Mapping[str, Any], physical: bool, a) -> tuple:
+    """x, y in the profile's length unit (None where the group has no surface point)."""
+    length = 1.0 if physical else a
+    return tuple(_f(p, k) * length if k in p else None for k in ("x", "y"))
+
+
+def _evaluate(kind: str | None):
+    """An evaluate(names, params, options) for one profile kind (None: the recipe's `profile`)."""
+
+    def evaluate(names, p, options):
+        physical = options["physical"]
+        profile = make_profile(kind or p["profile"], p, physical)
+        a, out = contact(names, p, profile, physical)
+        local = [n for n in names if n in ax.FIELDS]
+        if not local:
+            return out
+        scale, dpdz_scale = scales(p, physical, a, profile)
+        values, _ = ax.fields(local, profile, *surface_point(p, physical, a), a=a, nu=_f(p, "nu"),
+                              mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"], rtol=options["rtol"],
+                              scale=scale, dpdz_scale=dpdz_scale)
+        if "stick_radius" in values and not physical:
+            values["stick_radius"] = values["stick_radius"] / a
+        out.update(values)
+        return out
+
+    return evaluate
+
+
+def check_profile(values, physical, method):
+    """User messages for the profile parameters and for a method the profile has no route for."""
     problems = []
-    if values.get("profile") == "tabulated" and "profile_r" in values and "profile_f" in values:
+    kind = values.get("profile")
+    if kind == "tabulated" and "profile_r" in values and "profile_f" in values:
         r, f = np.asarray(values["profile_r"]), np.asarray(values["profile_f"])
         if r.shape != f.shape:
             return [f"profile_r has {r.size} values but profile_f has {f.size}; they must pair up"]
@@ -213,44 +200,41 @@ def _check_general(values, physical, method):
             if np.any(deltas > reach):
                 problems.append(f"delta = {float(deltas.max())!r} m exceeds the depth {reach!r} m at which the "
                                 f"contact reaches the end of the table, r = {r[-1]!r} m; extend profile_r")
-    if values.get("profile") == "flat_punch" and isinstance(values.get("delta"), np.ndarray):
+    if kind == "flat_punch" and isinstance(values.get("delta"), np.ndarray):
         problems.append("delta cannot be swept for profile = 'flat_punch': its contact radius is the punch "
                         "radius and every field scales with delta; give one value")
-    if method == "closed" and values.get("profile") in ("tabulated", "power_law") and not (
-            values.get("profile") == "power_law" and values.get("n") in (1.0, 2.0)):
-        problems.append(f"method.method = 'closed' has no closed form for profile = {values.get('profile')!r}; "
+    if method == "closed" and kind is not None and not ax.has_closed_form(kind, values.get("n")):
+        problems.append(f"method.method = 'closed' has no closed form for profile = {kind!r}; "
                         "use 'auto' or 'quadrature'")
     return problems
 
 
-def route(values, method, rtol):
-    """Which route `auto` takes (closed forms where they exist, eq. 1, 3, 14-17, 36-41) and how
-    accurate it is; the quadrature's order comes from a table verified against rtol."""
-    profile = values.get("profile")
-    closed = profile in (None, "flat_punch", "cone", "paraboloid") or (
-        profile == "power_law" and values.get("n") in (1.0, 2.0))
-    if method == "closed" or (method == "auto" and closed):
-        return "closed form", "double-precision rounding (relative error about 1e-14)"
-    return ("one-dimensional Gauss quadrature of the MDR integrals",
-            f"relative error below rtol = {rtol:g} of the mean contact pressure scale")
+def route_of(kind: str | None = None, default: str = PROFILE.default):
+    """The scenario's route(values, method, rtol) -> (route, accuracy): ``physics.axisymmetric.resolve``
+    for the profile ``kind`` (None: the recipe's `profile`, else ``default``)."""
+
+    def route(values, method, rtol):
+        return ax.resolve(kind or values.get("profile", default), method, rtol, values.get("n"))
+
+    return route
 
 
-def _scenario(name, summary, geometry, make_profile, check=None):
+def _scenario(name, summary, geometry, kind, check=None):
     params = (NU, MU, UX0, E, DELTA) + geometry + (Y, X)
     case = tuple(p.name for p in params if p.name not in SPATIAL)
     return Scenario(
         name=name, summary=summary, references=REFERENCE, theory="axisymmetric", parameters=params,
-        variables=_variables(case, tuple(p.name for p in geometry)), evaluate=_evaluate(make_profile), physical_switch="E",
-        methods=("auto", "closed", "quadrature"),
+        variables=variables(case, tuple(p.name for p in geometry)), evaluate=_evaluate(kind),
+        physical_switch="E", methods=ax.METHODS,
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),
-        check=check, route=route,
+        check=check, route=route_of(kind),
     )
 
 
 CONICAL = _scenario("conical", "Rigid cone on an elastic half-space: surface stresses and dp/dz under normal "
-                    "and Cattaneo-Mindlin tangential load", (THETA,), _cone)
+                    "and Cattaneo-Mindlin tangential load", (THETA,), "cone")
 PARABOLIC = _scenario("parabolic", "Rigid paraboloid (Hertz-Mindlin) on an elastic half-space: surface stresses "
-                      "and dp/dz under normal and Cattaneo-Mindlin tangential load", (R,), _paraboloid)
+                      "and dp/dz under normal and Cattaneo-Mindlin tangential load", (R,), "paraboloid")
 AXISYMMETRIC = _scenario("axisymmetric", "Rigid axisymmetric indenter of any profile (power law, tabulated, flat "
                          "punch) on an elastic half-space: surface stresses and dp/dz (MDR, 1-D integrals)",
-                         (PROFILE, N, A, RADIUS, PROFILE_R, PROFILE_F), _general, _check_general)
+                         (PROFILE, N, A, RADIUS, PROFILE_R, PROFILE_F), None, check_profile)

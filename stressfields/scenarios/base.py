@@ -11,6 +11,8 @@ from typing import Any, Callable, Mapping, Protocol, Sequence, TypedDict
 
 import numpy as np
 
+from ..physics.flags import validity_flag as nonfinite_flag  # noqa: F401  (re-exported)
+
 #: Values a parameter may take.
 FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
 
@@ -187,19 +189,6 @@ class Scenario:
     def variables_in(self, physical: bool) -> tuple[Variable, ...]:
         mode = "physical" if physical else "normalised"
         return tuple(v for v in self.variables if v.mode in (None, mode))
-
-
-def nonfinite_flag(*arrays: np.ndarray) -> np.ndarray:
-    """Per-point validity flag: 0 finite, 1 some value unbounded (+-inf), 2 some value undefined (NaN)."""
-    shape = np.broadcast_shapes(*(np.shape(a) for a in arrays))
-    flag = np.zeros(shape, dtype=np.int8)
-    for arr in arrays:
-        arr = np.broadcast_to(arr, shape)
-        flag = np.maximum(flag, np.where(np.isinf(arr), 1, 0).astype(np.int8))
-    for arr in arrays:
-        arr = np.broadcast_to(arr, shape)
-        flag = np.where(np.isnan(arr), np.int8(2), flag)
-    return flag
 
 
 def _fmt(v: float) -> str:

@@ -2,7 +2,7 @@
 
 Scenario `axisymmetric_history`: the surface fields of the `axisymmetric` scenarios after every
 step of a tangential displacement history u_x0(t), from the MDR spring memory of eq. (27)-(28)
-(``physics.axisymmetric.history``; docs/theory/axisymmetric.md (A65)-(A77)), plus the tangential
+(``physics.axisymmetric.history_fields``; docs/theory/axisymmetric.md (A65)-(A77)), plus the tangential
 force, the stick radius, and the energy dissipated by friction.  Parameters, normalisation
 (p_m = F_N/(pi a^2)), physical mode (give E) and flags are those of the `axisymmetric` scenarios.
 
@@ -14,17 +14,15 @@ the whole history, so one history can be swept over amplitudes.
 from __future__ import annotations
 
 import dataclasses
-import functools
-import math
 
 import numpy as np
 
 from ..physics import axisymmetric as ax
-from ..physics.axisymmetric import history as hist
-from ..physics.invariants import principal_stresses, von_mises
-from .axisymmetric import (A, DELTA, E, MU, N, NU, PRINCIPAL, PROFILE_F, PROFILE_R, R, REFERENCE, SPATIAL,
-                           STRESS, THETA, X, Y, _check_general, _contact_radius, _general, _variables, route)
-from .base import ARRAY, INT, STR, Parameter, Scenario, Variable, nonfinite_flag
+from ..physics.axisymmetric import PRINCIPAL, STRESS
+from .axisymmetric import (A, DELTA, E, MU, N, NU, PROFILE_F, PROFILE_R, R, REFERENCE, SPATIAL, THETA, X, Y,
+                           check_profile, contact, effective_modulus, make_profile, route_of, scales,
+                           surface_point, variables)
+from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
 
 HISTORY = Parameter("ux0_history", "tangential rigid-body displacements u_x0 divided by the indentation depth "
                     "delta, in order, starting from the unloaded state u_x0 = 0 (each step is reached "
@@ -42,18 +40,17 @@ PARAMETERS = (NU, MU, AMPLITUDE, STEP, E, DELTA) + GEOMETRY + (HISTORY, Y, X)
 CASE = tuple(p.name for p in PARAMETERS if p.name not in SPATIAL)
 
 LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle_energy", "ux0")
-_NOT_LOCAL = ("contact_radius", "mean_pressure", "normal_force")
 
 
 def _history_variables() -> tuple[Variable, ...]:
     base = []
-    for v in _variables(CASE, tuple(p.name for p in GEOMETRY)):
+    for v in variables(CASE, tuple(p.name for p in GEOMETRY)):
         if v.name == "stick_radius":
             continue
         if v.name == "region":
             v = dataclasses.replace(v, comment=(
-                "stick: r below the stick radius of the current step (these springs do not slip while "
-                "u_x0 moves into this step; they may hold traction locked in by earlier steps); slip: the "
+                "stick: r below the stick radius of the current step (these springs do not slip while"
+                " u_x0 moves into this step; they may hold traction locked in by earlier steps); slip: the "
                 "annulus that slips during that move; contact_without_tangential_traction: mu = 0 or no "
                 "tangential displacement yet"))
         base.append(v)
@@ -82,136 +79,33 @@ def _history_variables() -> tuple[Variable, ...]:
     )
 
 
-def _profile(p, physical):
-    kind = p["profile"]
-    if kind == "cone":
-        return ax.cone(math.tan(p["theta"]) if physical else 1.0)
-    if kind == "paraboloid":
-        return ax.paraboloid(p["R"] if physical else 1.0)
-    return _general(p, physical)
-
-
-@functools.lru_cache(maxsize=32)
-def _memory(history: tuple) -> tuple[list, list]:
-    sts = hist.states(history)
-    return sts, hist.closed_cycles(sts)
-
-
-@functools.lru_cache(maxsize=256)
-def _energy(history: tuple, a: float, nu: float, mu: float, profile, amplitude: float) -> np.ndarray:
-    return hist.dissipated_energy(history, a, nu, mu, profile, scale=amplitude)
-
-
 def evaluate(names, p, options):
+    """Recipe values -> profile -> ``physics.axisymmetric.history_fields`` -> the variables' units."""
     physical = options["physical"]
-    profile = _profile(p, physical)
-    f = lambda key: np.asarray(p[key], dtype=float)  # noqa: E731
-    a = _contact_radius(profile, f("delta")) if physical else np.float64(1.0)
-    out: dict[str, np.ndarray] = {}
-    history = tuple(float(v) for v in np.asarray(p["ux0_history"]).ravel())
+    profile = make_profile(p["profile"], p, physical)
+    a, out = contact(names, p, profile, physical)
     if "ux0" in names:
-        out["ux0"] = f("amplitude") * np.asarray(history)[np.asarray(p["step"], dtype=np.int64)]
-    pm_hat = ax.mean_pressure(a, profile)
-    e_star = f("E") / (1.0 - f("nu") ** 2) if physical else None
-    if "contact_radius" in names:
-        out["contact_radius"] = a
-    if "mean_pressure" in names:
-        out["mean_pressure"] = pm_hat * e_star if physical else pm_hat
-    if "normal_force" in names:
-        out["normal_force"] = profile.normal_force(a) * e_star
-    local = [n for n in names if n not in _NOT_LOCAL + ("ux0",)]
+        history = np.asarray(p["ux0_history"], dtype=float).ravel()
+        out["ux0"] = np.asarray(p["amplitude"], dtype=float) * history[np.asarray(p["step"], dtype=np.int64)]
+    local = [n for n in names if n in ax.HISTORY_FIELDS]
     if not local:
         return out
-
-    sts, cycles = _memory(history)
-    steps = np.asarray(p["step"], dtype=np.int64)
-    spatial = [n for n in local if n not in LOADS]
-    keys = ["nu", "mu", "amplitude"] + (["x", "y"] if spatial else [])
-    arrays = {k: f(k) for k in keys}
-    arrays["a"] = np.asarray(a, dtype=float)
-    arrays["step"] = steps
-    if physical:
-        arrays["e_star"] = np.asarray(e_star, dtype=float)
-    shape = np.broadcast_shapes(*(np.shape(v) for v in arrays.values()))
-    flat = {k: np.broadcast_to(v, shape).ravel() for k, v in arrays.items()}
-    size = int(np.prod(shape, dtype=np.int64))
-    results = {n: np.empty(size, dtype=np.int8 if n == "region" else float) for n in local if n != "validity"}
-
-    method = options["method"]
-    if method == "auto":
-        method = "closed" if profile.has_closed_form else "quadrature"
-    for s in np.unique(flat["step"]):
-        idx = np.flatnonzero(flat["step"] == s)
-        P = {k: v[idx] for k, v in flat.items()}
-        terms = [(lam * P["amplitude"], w) for lam, w in sts[int(s)].terms()]
-        terms = terms if np.any(P["amplitude"] > 0) else []
-        _loads(names, results, idx, P, terms, profile, history, int(s), cycles, physical)
-        if spatial:
-            _fields(spatial, results, idx, P, terms, profile, physical, method, options["rtol"])
-    out.update({n: v.reshape(shape) for n, v in results.items()})
-    if "validity" in names:
-        fields = [out[n] for n in out if n in STRESS + PRINCIPAL + ("von_mises", "dpdz")]
-        out["validity"] = nonfinite_flag(*fields) if fields else np.int8(0)
+    scale, dpdz_scale = scales(p, physical, a, profile)
+    nu, mu = (np.asarray(p[k], dtype=float) for k in ("nu", "mu"))
+    values, _ = ax.history_fields(local, profile, *surface_point(p, physical, a), a=a, nu=nu, mu=mu,
+                                  amplitude=np.asarray(p["amplitude"], dtype=float), history=p["ux0_history"],
+                                  step=p["step"], method=options["method"], rtol=options["rtol"], scale=scale,
+                                  dpdz_scale=dpdz_scale)
+    if physical:       # F_x / (mu F_N) -> N, energies / (mu F_N delta) -> J
+        force = mu * profile.normal_force(a) * effective_modulus(p)
+        energy = force * profile.depth(a)
+        for n, unit in (("tangential_force", force), ("dissipated_energy", energy), ("cycle_energy", energy)):
+            if n in values:
+                values[n] = values[n] * unit
+    elif "stick_radius" in values:
+        values["stick_radius"] = values["stick_radius"] / a
+    out.update(values)
     return out
-
-
-def _loads(names, results, idx, P, terms, profile, history, step, cycles, physical):
-    a, nu, mu = P["a"], P["nu"], P["mu"]
-    force_scale = mu * profile.normal_force(a) * P["e_star"] if physical else 1.0
-    if "stick_radius" in names:
-        c = hist.current_stick_radius(terms, a, nu, mu, profile)
-        results["stick_radius"][idx] = c if physical else c / a
-    if "tangential_force" in names:
-        results["tangential_force"][idx] = hist.tangential_force(terms, a, nu, mu, profile) * force_scale
-    want = [n for n in ("dissipated_energy", "cycle_energy") if n in names]
-    if want:
-        energy_scale = force_scale * (profile.depth(a) if physical else 1.0)
-        combos = np.stack([a, nu, mu, P["amplitude"]], axis=-1)
-        uniq, inverse = np.unique(combos, axis=0, return_inverse=True)
-        total = np.empty(len(uniq))
-        cycle = np.zeros(len(uniq))
-        for i, (ai, nui, mui, ampi) in enumerate(uniq):
-            w = _energy(history, float(ai), float(nui), float(mui), profile, float(ampi))
-            total[i] = w[step]
-            if cycles[step] is not None:
-                cycle[i] = w[step] - w[cycles[step]]
-        inverse = inverse.ravel()
-        if "dissipated_energy" in names:
-            results["dissipated_energy"][idx] = total[inverse] * energy_scale
-        if "cycle_energy" in names:
-            results["cycle_energy"][idx] = cycle[inverse] * energy_scale
-
-
-def _fields(spatial, results, idx, P, terms, profile, physical, method, rtol):
-    a, nu, mu = P["a"], P["nu"], P["mu"]
-    xs, ys = (P[k] * (1.0 if physical else a) for k in ("x", "y"))
-    pm_hat = ax.mean_pressure(a, profile)
-    stress_scale = P["e_star"] if physical else 1.0 / pm_hat
-    want = [n for n in spatial if n in STRESS]
-    if any(n in spatial for n in ("von_mises",) + PRINCIPAL):
-        want = list(STRESS)
-    if want:
-        comps = tuple(n.removeprefix("sigma_") for n in want)
-        sig = hist.history_stress(xs, ys, a, nu, mu, profile, terms, components=comps, method=method, rtol=rtol)
-        stress = {f"sigma_{k}": v * stress_scale for k, v in sig.items()}
-        for n in spatial:
-            if n in STRESS:
-                results[n][idx] = stress[n]
-        if "von_mises" in spatial:
-            results["von_mises"][idx] = von_mises(*(stress[s] for s in STRESS))
-        if any(n in spatial for n in PRINCIPAL):
-            for n, v in zip(PRINCIPAL, principal_stresses(*(stress[s] for s in STRESS))):
-                if n in spatial:
-                    results[n][idx] = v
-    if "dpdz" in spatial:
-        g = hist.history_dpdz(xs, ys, a, nu, mu, profile, terms, method=method, rtol=rtol)
-        results["dpdz"][idx] = g * (P["e_star"] if physical else a / pm_hat)
-    if "region" in spatial:
-        r = np.hypot(xs, ys)
-        c = hist.current_stick_radius(terms, a, nu, mu, profile)
-        region = np.where(r > a, 0, np.where(r < c, 1, 2)).astype(np.int8)
-        free = (mu == 0) | (P["amplitude"] == 0) | (not terms)
-        results["region"][idx] = np.where(free & (r <= a), np.int8(3), region)
 
 
 def _complete(values):
@@ -226,7 +120,7 @@ def _complete(values):
 
 
 def _check(values, physical, method):
-    problems = _check_general(values, physical, method)
+    problems = check_profile(values, physical, method)
     n = len(values.get("ux0_history", ()))
     if n == 0:
         return problems
@@ -252,9 +146,9 @@ AXISYMMETRIC_HISTORY = Scenario(
     physical_switch="E",
     conventions=("tension positive, z points into the body, p_h = -trace(sigma)/3, tangential traction on the "
                  "half-space along +x for u_x0 > 0, F_x the force on the half-space along +x"),
-    methods=("auto", "closed", "quadrature"),
+    methods=ax.METHODS,
     default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "region") + LOADS,
-    check=_check, complete=_complete, route=route,
+    check=_check, complete=_complete, route=route_of(default=PROFILE.default),
 )
 
 SCENARIOS: tuple = (AXISYMMETRIC_HISTORY,)

@@ -94,13 +94,13 @@ def _inplane_quad(profile, x, y, a, c, nu, mu):
     if hi <= lo:
         return 0.0, 0.0, 0.0
 
-    def I(k):   # int u^k * u g'(u) / sqrt(r^2 - u^2) du
+    def moment(k):   # int u^k * u g'(u) / sqrt(r^2 - u^2) du
         f = lambda u: u ** (k + 1) * float(profile.dg(u)) / math.sqrt(r + u)  # noqa: E731
         if hi == r:
             return quad(f, lo, hi, weight="alg", wvar=(0.0, -0.5), **QUAD)[0]
         return quad(lambda u: f(u) / math.sqrt(r - u), lo, hi, **QUAD)[0]
 
-    I0, I2 = I(0), I(2)
+    I0, I2 = moment(0), moment(2)
     sxx = -2 * mu * x / (math.pi * r ** 6) * (((1 + nu) * r ** 4 - 3 * nu * r ** 2 * y ** 2) * I0
                                               - nu * (r ** 2 - 4 * y ** 2) * I2)
     syy = -2 * nu * mu * x / (math.pi * r ** 6) * (3 * r ** 2 * y ** 2 * I0 + (r ** 2 - 4 * y ** 2) * I2)

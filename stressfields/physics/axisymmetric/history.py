@@ -282,7 +282,7 @@ def tangential_force(terms, a, nu, mu, profile) -> np.ndarray:
     a_ = np.asarray(a, dtype=float)
     fa = profile.normal_force(a_)
     total = np.zeros(np.broadcast_shapes(*(np.shape(v) for v in (a, nu, mu))))
-    for (lam, w), c in zip(terms, stick_radii(terms, a, nu, mu, profile)):
+    for (_lam, w), c in zip(terms, stick_radii(terms, a, nu, mu, profile)):
         total = total + w * (1.0 - profile.normal_force(c) / fa)
     return total
 

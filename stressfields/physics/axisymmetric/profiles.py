@@ -17,6 +17,9 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.special import gammaln
 
+from ..roots import bisect
+from .routes import has_closed_form, power_law_family
+
 __all__ = ["Profile", "Cone", "Paraboloid", "PowerLaw", "FlatPunch", "Tabulated",
            "cone", "paraboloid", "power_law", "flat_punch", "tabulated"]
 
@@ -48,7 +51,8 @@ class Profile:
 
     @property
     def has_closed_form(self) -> bool:
-        return self.closed is not None
+        """Whether closed forms exist for this profile (decided by ``routes.has_closed_form``)."""
+        return has_closed_form(self.kind, getattr(self, "n", None))
 
     @property
     def closed(self):
@@ -167,9 +171,10 @@ class PowerLaw(Profile):
 
     @property
     def closed(self):
-        if self.n == 1.0:
+        family = power_law_family(self.n)      # the route table's n = 1 and n = 2
+        if family == "cone":
             return ("cone", self.A)
-        if self.n == 2.0:
+        if family == "paraboloid":
             return ("paraboloid", 0.5 / self.A)
         return None
 
@@ -554,19 +559,15 @@ class Tabulated(Profile):
         return self._sums(self._check_radius(a), 3)
 
     def contact_radius(self, delta):
-        """Inverse of ``depth`` by bisection (g is increasing for a monotone profile)."""
+        """Inverse of ``depth`` (eq. 7, docs/theory/axisymmetric.md (A3)) by 80 bisection steps on
+        [0, r_max] (g is increasing for a monotone profile)."""
         delta = _arr(delta)
         top = float(self.g(self.max_radius))
         if np.any(delta > top * (1.0 + 1e-12)) or np.any(delta < 0.0):
             raise ValueError(f"tabulated profile: depth must lie in [0, {top!r}] (the depth at the end "
                              f"of the table, r = {self.max_radius!r}); got {delta!r}")
-        lo = np.zeros(delta.shape)
-        hi = np.full(delta.shape, self.max_radius)
-        for _ in range(80):
-            mid = 0.5 * (lo + hi)
-            below = self.g(mid) < delta
-            lo, hi = np.where(below, mid, lo), np.where(below, hi, mid)
-        return 0.5 * (lo + hi)
+        return bisect(lambda r: self.g(r) < delta, np.zeros(delta.shape), np.full(delta.shape, self.max_radius),
+                      80)
 
 
 # -- constructors (the public API) -------------------------------------------------------------------

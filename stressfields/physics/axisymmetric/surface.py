@@ -100,7 +100,7 @@ def _route(profile, method):
     if profile.kind == "flat_punch":
         return profile.closed           # both methods: eq. (3), (6), (19), (22)
     if method == "closed":
-        if profile.closed is None:
+        if not profile.has_closed_form:       # decided by routes.has_closed_form
             raise ValueError(f"method='closed': the {profile.kind} profile {profile!r} has no closed form; "
                              "use method='quadrature'")
         return profile.closed

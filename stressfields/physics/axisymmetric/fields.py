@@ -1,0 +1,253 @@
+"""The entry points of the axisymmetric family: every surface field of a scenario in one call.
+
+``fields`` (monotonic Cattaneo–Mindlin loading) and ``history_fields`` (a tangential displacement
+history at constant normal load, docs/theory/axisymmetric.md (A65)-(A77)) take the field names, a
+``Profile`` and plain arrays that broadcast against each other, choose the route with
+``routes.resolve`` and return ``({name: ndarray}, Route)``.  They own what lies between the kernels
+and a scenario: the stick radius (A32)-(A33), the sticking flat punch, the invariants (A60)-(A61)
+of the stress tensor, dp/dz, the contact-region flag and the validity flag.
+
+Units (as the kernels): lengths (x, y, a, the stick radius) in the profile's length unit; stresses,
+von Mises and principal stresses divided by E* and multiplied by ``scale``; dp/dz divided by
+E*/length and multiplied by ``dpdz_scale`` (default ``scale``).  With the default ``scale = 1`` the
+values are per unit E*; a caller that wants pascals passes E*, one that wants units of the mean
+pressure p_m passes E*/p_m (and a E*/p_m for dp/dz in units of p_m/a).  The invariants are formed
+from the scaled tensor.  Pure NumPy/SciPy.
+"""
+from __future__ import annotations
+
+import functools
+from typing import Callable, Iterable
+
+import numpy as np
+
+from ..flags import validity_flag
+from ..invariants import principal_stresses, von_mises
+from . import history as hist
+from .profiles import Profile
+from .routes import Route, resolve
+from .surface import stick_radius, surface_dpdz, surface_stress
+
+__all__ = ["STRESS", "PRINCIPAL", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS", "fields", "history_fields",
+           "contact_radius", "validity_flag"]
+
+STRESS = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz")
+PRINCIPAL = ("sigma_1", "sigma_2", "sigma_3")
+#: fields of a surface point (they need x and y)
+SPATIAL = STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "region", "validity")
+#: everything ``fields`` computes
+FIELDS = SPATIAL + ("stick_radius",)
+#: the loads of a history step (no x, y): stick radius, F_x / (mu F_N), energies / (mu F_N delta)
+HISTORY_LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle_energy")
+#: everything ``history_fields`` computes
+HISTORY_FIELDS = SPATIAL + HISTORY_LOADS
+#: the fields the validity flag looks at
+_VALUED = STRESS + PRINCIPAL + ("von_mises", "dpdz")
+
+# region flag values (flag_meanings of the scenarios' `region`)
+OUTSIDE, STICK, SLIP, NO_TRACTION = 0, 1, 2, 3
+
+
+def fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu, ux0, method: str = "auto",
+           rtol: float = 1e-10, scale=1.0, dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
+    """The requested surface (z = 0) fields under normal load and monotonic Cattaneo–Mindlin
+    tangential load, and the route taken.
+
+    Parameters
+    ----------
+    names : any of ``FIELDS``: "sigma_xx" ... "sigma_yz" (stresses, eq. 9 + 24-25,
+        docs/theory/axisymmetric.md (A14)-(A16), (A34), (A38)-(A41)), "von_mises" (A60),
+        "sigma_1" ... "sigma_3" (principal stresses, eigenvalues of the tensor), "dpdz" (d p_h/dz
+        at z = 0+, (A24)-(A26) + (A53)-(A54)), "stick_radius" (A32)-(A33), "region" (int8:
+        0 outside the contact r > a, 1 stick r < c, 2 slip, 3 contact without tangential traction,
+        mu = 0 or ux0 = 0) and "validity" (int8: 0 every requested value finite, 1 some value +-inf,
+        2 some value NaN; 0 when no valued field is requested).
+    profile : a ``Profile`` (``cone``, ``paraboloid``, ``power_law``, ``flat_punch``, ``tabulated``).
+    x, y : surface coordinates (x along the tangential load), length unit of the profile; may be
+        None when only "stick_radius" is requested.
+    a : contact radius; nu : Poisson's ratio; mu : coefficient of friction; ux0 : tangential
+        rigid-body displacement u_x0 divided by the indentation depth delta.  All broadcast.
+    method : "auto", "closed" or "quadrature" (``routes.resolve``); rtol : accuracy of the
+        quadrature route.
+    scale, dpdz_scale : see the module docstring (default: per unit E*).
+
+    A flat punch sticks whole or slides; sticking (c = a with u_x0 > 0 and mu > 0) its traction is
+    the sliding one with mu E* delta replaced by G* u_x0 (paper eq. 20; docs/theory/axisymmetric.md
+    (A37), (A42)-(A44), (A59)), which the kernels take as c = 0 and mu = (G*/E*) u_x0/delta.  The
+    stick radius and the region flag keep c = a.
+    """
+    names = _known(names, FIELDS)
+    route = resolve(profile, method, rtol)
+    nu, mu, ux0 = (np.asarray(v, dtype=float) for v in (nu, mu, ux0))
+    c = stick_radius(a, nu, mu, ux0, profile)
+    c_kernel, mu_kernel = c, mu
+    if profile.kind == "flat_punch":
+        stuck = (c == a) & (ux0 > 0) & (mu > 0)
+        mu_kernel = np.where(stuck, 2.0 * (1.0 - nu) / (2.0 - nu) * ux0, mu)
+        c_kernel = np.where(stuck, 0.0, c)
+    out: dict[str, np.ndarray] = {}
+    if "stick_radius" in names:
+        out["stick_radius"] = c
+    spatial = [n for n in names if n in SPATIAL]
+    if not spatial:
+        return out, route
+    kw = dict(method=route.kernel, rtol=rtol)
+    out.update(_surface(
+        spatial, scale, dpdz_scale,
+        stress=lambda comps: surface_stress(x, y, a, c_kernel, nu, mu_kernel, profile, components=comps, **kw),
+        dpdz=lambda: surface_dpdz(x, y, a, c_kernel, nu, mu_kernel, profile, **kw),
+        region=lambda: _region(np.hypot(x, y), a, c, (mu == 0) | (ux0 == 0))))
+    if "validity" in names:
+        out["validity"] = validity_flag(*(out[n] for n in out if n in _VALUED))
+    return out, route
+
+
+def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu, amplitude, history,
+                   step, method: str = "auto", rtol: float = 1e-10, scale=1.0,
+                   dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
+    """The requested fields after step ``step`` of the tangential displacement history
+    u_x0/delta = ``amplitude`` * ``history``, at constant normal load (MDR springs with memory,
+    Mindlin–Deresiewicz; docs/theory/axisymmetric.md (A65)-(A77), ``history``), and the route.
+
+    ``names``: any of ``HISTORY_FIELDS``: the surface fields of ``fields`` (the stress tensor
+    (A69), its invariants, dp/dz, the region flag with "stick" the zone that does not slip during
+    the move into this step and "contact without tangential traction" for mu = 0, amplitude 0 or
+    no displacement yet, the validity flag) and the loads "stick_radius" (the current branch's, in
+    length units; a before any displacement), "tangential_force" F_x / (mu F_N) (A75),
+    "dissipated_energy" (from the start) and "cycle_energy" (of the hysteresis cycle closing at
+    this step, 0 where none closes), both divided by mu F_N delta (A76).  At mu = 0 the loads are
+    the limits mu -> 0+.
+
+    ``history``: the values u_x0/delta, in order, from the unloaded start; ``step``: integer
+    indices into it.  a, nu, mu, amplitude, step, x, y, scale and dpdz_scale broadcast (x, y may
+    be None when no surface field is requested).  Units, ``method``, ``rtol``, ``scale`` and
+    ``dpdz_scale`` as for ``fields``.  The outputs have the broadcast shape of all arguments.
+    """
+    names = _known(names, HISTORY_FIELDS)
+    route = resolve(profile, method, rtol)
+    history = tuple(float(v) for v in np.asarray(history, dtype=float).ravel())
+    sts, cycles = _memory(history)
+    spatial = [n for n in names if n in SPATIAL]
+    arrays = {k: np.asarray(v, dtype=float) for k, v in (("nu", nu), ("mu", mu), ("amplitude", amplitude))}
+    if spatial:
+        arrays.update(x=np.asarray(x, dtype=float), y=np.asarray(y, dtype=float))
+    arrays["a"] = np.asarray(a, dtype=float)
+    arrays["step"] = np.asarray(step, dtype=np.int64)
+    arrays["scale"] = np.asarray(scale, dtype=float)
+    arrays["dpdz_scale"] = arrays["scale"] if dpdz_scale is None else np.asarray(dpdz_scale, dtype=float)
+    shape = np.broadcast_shapes(*(np.shape(v) for v in arrays.values()))
+    flat = {k: np.broadcast_to(v, shape).ravel() for k, v in arrays.items()}
+    size = int(np.prod(shape, dtype=np.int64))
+    results = {n: np.empty(size, dtype=np.int8 if n == "region" else float) for n in names if n != "validity"}
+    valued = [n for n in spatial if n != "validity"]
+    kw = dict(method=route.kernel, rtol=rtol)
+    for s in np.unique(flat["step"]):
+        idx = np.flatnonzero(flat["step"] == s)
+        P = {k: v[idx] for k, v in flat.items()}
+        A, NU, MU = P["a"], P["nu"], P["mu"]
+        terms = [(lam * P["amplitude"], w) for lam, w in sts[int(s)].terms()]
+        terms = terms if np.any(P["amplitude"] > 0) else []
+        part = _history_loads(names, A, NU, MU, P["amplitude"], profile, terms, history, int(s), cycles)
+        if valued:
+            part.update(_surface(
+                valued, P["scale"], P["dpdz_scale"],
+                stress=lambda comps: hist.history_stress(P["x"], P["y"], A, NU, MU, profile, terms,
+                                                         components=comps, **kw),
+                dpdz=lambda: hist.history_dpdz(P["x"], P["y"], A, NU, MU, profile, terms, **kw),
+                region=lambda: _region(np.hypot(P["x"], P["y"]), A,
+                                       hist.current_stick_radius(terms, A, NU, MU, profile),
+                                       (MU == 0) | (P["amplitude"] == 0) | (not terms))))
+        for n, v in part.items():
+            results[n][idx] = v
+    out = {n: v.reshape(shape) for n, v in results.items()}
+    if "validity" in names:
+        out["validity"] = validity_flag(*(out[n] for n in out if n in _VALUED))
+    return out, route
+
+
+def contact_radius(profile: Profile, delta) -> np.ndarray:
+    """Contact radius a at the indentation depth ``delta`` (eq. 7, delta = g(a),
+    docs/theory/axisymmetric.md (A3)), element by element."""
+    return np.vectorize(profile.contact_radius, otypes=[float])(delta)
+
+
+# -- shared pieces -------------------------------------------------------------------------------
+
+def _known(names: Iterable[str], allowed: tuple[str, ...]) -> list[str]:
+    names = list(names)
+    unknown = [n for n in names if n not in allowed]
+    if unknown:
+        raise ValueError(f"unknown field(s) {unknown!r}: use some of {', '.join(allowed)}")
+    return names
+
+
+def _surface(names: list[str], scale, dpdz_scale, *, stress: Callable[[tuple[str, ...]], dict],
+             dpdz: Callable[[], np.ndarray], region: Callable[[], np.ndarray]) -> dict[str, np.ndarray]:
+    """The stress block (the tensor times ``scale``, von Mises (A60), principal stresses), dp/dz
+    times ``dpdz_scale`` (default ``scale``) and the region flag, each computed only if requested;
+    ``stress(components)`` gives the tensor / E*, ``dpdz()`` dp/dz / (E*/length)."""
+    out: dict[str, np.ndarray] = {}
+    want = [n for n in names if n in STRESS]
+    if any(n in names for n in ("von_mises",) + PRINCIPAL):
+        want = list(STRESS)
+    if want:
+        sig = stress(tuple(n.removeprefix("sigma_") for n in want))
+        tensor = {f"sigma_{k}": v * scale for k, v in sig.items()}
+        out.update((n, tensor[n]) for n in names if n in STRESS)
+        if "von_mises" in names:
+            out["von_mises"] = von_mises(*(tensor[s] for s in STRESS))
+        if any(n in names for n in PRINCIPAL):
+            out.update((n, v) for n, v in zip(PRINCIPAL, principal_stresses(*(tensor[s] for s in STRESS)))
+                       if n in names)
+    if "dpdz" in names:
+        out["dpdz"] = dpdz() * (scale if dpdz_scale is None else dpdz_scale)
+    if "region" in names:
+        out["region"] = region()
+    return out
+
+
+def _region(r, a, c, free) -> np.ndarray:
+    """Contact region flag: OUTSIDE r > a, STICK r < c, SLIP c <= r <= a; NO_TRACTION r <= a where
+    ``free`` (no tangential traction)."""
+    region = np.where(r > a, OUTSIDE, np.where(r < c, STICK, SLIP)).astype(np.int8)
+    return np.where(np.asarray(free) & (r <= a), np.int8(NO_TRACTION), region)
+
+
+@functools.lru_cache(maxsize=32)
+def _memory(history: tuple) -> tuple[list, list]:
+    """Spring memory of every step and the closed cycles of a history (``history.states``,
+    ``history.closed_cycles``)."""
+    sts = hist.states(history)
+    return sts, hist.closed_cycles(sts)
+
+
+@functools.lru_cache(maxsize=256)
+def _energy(history: tuple, a: float, nu: float, mu: float, profile: Profile, amplitude: float) -> np.ndarray:
+    return hist.dissipated_energy(history, a, nu, mu, profile, scale=amplitude)
+
+
+def _history_loads(names, a, nu, mu, amplitude, profile, terms, history, step, cycles) -> dict[str, np.ndarray]:
+    """The loads of one step on 1-D arrays a, nu, mu, amplitude: stick radius, F_x / (mu F_N) and
+    the energies / (mu F_N delta), the energy once per distinct (a, nu, mu, amplitude)."""
+    out = {}
+    if "stick_radius" in names:
+        out["stick_radius"] = hist.current_stick_radius(terms, a, nu, mu, profile)
+    if "tangential_force" in names:
+        out["tangential_force"] = hist.tangential_force(terms, a, nu, mu, profile)
+    want = [n for n in ("dissipated_energy", "cycle_energy") if n in names]
+    if want:
+        combos = np.stack([a, nu, mu, amplitude], axis=-1)
+        uniq, inverse = np.unique(combos, axis=0, return_inverse=True)
+        total = np.empty(len(uniq))
+        cycle = np.zeros(len(uniq))
+        for i, (ai, nui, mui, ampi) in enumerate(uniq):
+            w = _energy(history, float(ai), float(nui), float(mui), profile, float(ampi))
+            total[i] = w[step]
+            if cycles[step] is not None:
+                cycle[i] = w[step] - w[cycles[step]]
+        inverse = inverse.ravel()
+        if "dissipated_energy" in names:
+            out["dissipated_energy"] = total[inverse]
+        if "cycle_energy" in names:
+            out["cycle_energy"] = cycle[inverse]
+    return out

@@ -1,0 +1,74 @@
+"""The route table of the axisymmetric family: which profiles have closed forms, what ``auto``
+means, and the (route, accuracy) strings written into every field's attributes.
+
+The one place that decides "a closed form exists" (docs/theory/axisymmetric.md (A5)-(A8)):
+
+* cone, paraboloid and flat punch always; a power law for n = 1 (the cone, tan(theta) = A) and
+  n = 2 (the paraboloid, R = 1/(2A)); a tabulated profile never.
+* ``auto`` takes the closed forms where they exist (normal load (A12)-(A13), (A18)-(A21),
+  (A28)-(A30); tangential load (A35)-(A37), (A42)-(A52), (A56)-(A59)) and otherwise the
+  one-dimensional integrals (A14)-(A16), (A24)-(A27), (A34), (A38)-(A41), (A53)-(A54) by Gauss
+  quadrature, whose order comes from a table verified against rtol.
+* ``closed`` and ``quadrature`` force a route; the kernels refuse ``closed`` where no closed form
+  exists, and a flat punch always uses its closed forms (its g' is a Dirac delta).
+
+The strings of ``resolve`` are written into files and must not change.
+"""
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+__all__ = ["METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "Route", "power_law_family", "has_closed_form", "resolve"]
+
+#: every method the family offers, the default first
+METHODS: tuple[str, ...] = ("auto", "closed", "quadrature")
+#: profile kinds whose every member has closed forms
+CLOSED_KINDS: tuple[str, ...] = ("cone", "paraboloid", "flat_punch")
+#: power-law exponents n with closed forms, and the closed-form family each one is
+POWER_LAW_CLOSED: dict[float, str] = {1.0: "cone", 2.0: "paraboloid"}
+
+_CLOSED = ("closed form", "double-precision rounding (relative error about 1e-14)")
+_QUADRATURE = "one-dimensional Gauss quadrature of the MDR integrals"
+
+
+class Route(NamedTuple):
+    """(route, accuracy) as written into every field's attributes (``stressfields_method``,
+    ``stressfields_accuracy``)."""
+
+    route: str
+    accuracy: str
+
+    @property
+    def kernel(self) -> str:
+        """The ``method`` argument of the kernels: "closed" or "quadrature"."""
+        return "closed" if self.route == _CLOSED[0] else "quadrature"
+
+
+def power_law_family(n) -> str | None:
+    """The closed-form family ("cone", "paraboloid") of the power law f = A r^n, or None."""
+    if n is None or isinstance(n, (str, bytes)) or np.ndim(n) != 0:
+        return None
+    return POWER_LAW_CLOSED.get(float(n))
+
+
+def has_closed_form(kind: str, n=None) -> bool:
+    """Whether a profile of this kind (``Profile.kind``; ``n`` the exponent of a power law) has
+    closed forms, docs/theory/axisymmetric.md (A5)-(A8)."""
+    return kind in CLOSED_KINDS or (kind == "power_law" and power_law_family(n) is not None)
+
+
+def resolve(profile, method: str, rtol: float, n=None) -> Route:
+    """The route ``method`` takes for a profile and how accurate it is.
+
+    ``profile`` is a profile kind ("cone", "paraboloid", "power_law", "flat_punch", "tabulated"),
+    with ``n`` the exponent of a power law, or a ``Profile`` (its kind and exponent are used).
+    ``auto`` is the closed form where one exists (``has_closed_form``), else the quadrature."""
+    if not isinstance(profile, str):
+        profile, n = profile.kind, getattr(profile, "n", None)
+    if method not in METHODS:
+        raise ValueError(f"unknown axisymmetric method {method!r}; allowed: {', '.join(METHODS)}")
+    if method == "closed" or (method == "auto" and has_closed_form(profile, n)):
+        return Route(*_CLOSED)
+    return Route(_QUADRATURE, f"relative error below rtol = {rtol:g} of the mean contact pressure scale")
