@@ -11,8 +11,6 @@ from typing import Any, Callable, Mapping, Protocol, Sequence, TypedDict
 
 import numpy as np
 
-from ..physics.flags import validity_flag as nonfinite_flag  # noqa: F401  (re-exported)
-
 #: Values a parameter may take.
 FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
 

@@ -18,7 +18,8 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics import graded as gp
-from .base import ARRAY, STR, Parameter, Scenario, Variable, nonfinite_flag
+from ..physics.flags import validity_flag
+from .base import ARRAY, STR, Parameter, Scenario, Variable
 
 REFERENCE = ("M. Hess, V. L. Popov, Method of dimensionality reduction in contact mechanics and friction: "
              "a user's handbook. II. Power-law graded materials, Facta Universitatis, Series Mechanical "
@@ -154,7 +155,7 @@ def _evaluate_normal(names, p, options):
     out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, a=_f(p, "a"), r=_r(p), k=_f(p, "k"),
                   nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
     if "validity" in names:
-        out["validity"] = nonfinite_flag(*(out[n] for n in ("pressure", "uz") if n in out))
+        out["validity"] = validity_flag(*(out[n] for n in ("pressure", "uz") if n in out))
     return out
 
 
@@ -214,7 +215,7 @@ def _evaluate_adhesive(names, p, options):
     if "critical_validity" in names:
         out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
     if "validity" in names:
-        out["validity"] = nonfinite_flag(out["pressure"]) if "pressure" in out else np.int8(0)
+        out["validity"] = validity_flag(out["pressure"]) if "pressure" in out else np.int8(0)
     return out
 
 
@@ -298,7 +299,7 @@ def _evaluate_tangential(names, p, options):
         ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
         out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
     if "validity" in names:
-        out["validity"] = nonfinite_flag(out["shear_traction"]) if "shear_traction" in out else np.int8(0)
+        out["validity"] = validity_flag(out["shear_traction"]) if "shear_traction" in out else np.int8(0)
     return out
 
 
