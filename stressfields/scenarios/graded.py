@@ -68,11 +68,6 @@ def _f(p, key):
     return None if v is None else np.asarray(v, dtype=float)
 
 
-def _r(p):
-    """The absolute radial coordinate r = (r/a) a of the physics."""
-    return None if p.get("r") is None or p.get("a") is None else _f(p, "r") * _f(p, "a")
-
-
 def _indenter(p):
     """The recipe's profile as the physics' description (kind + geometry arrays)."""
     kind = p["profile"]
@@ -152,7 +147,7 @@ N_VARS = (
 
 
 def _evaluate_normal(names, p, options):
-    out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, a=_f(p, "a"), r=_r(p), k=_f(p, "k"),
+    out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, a=_f(p, "a"), rho=_f(p, "r"), k=_f(p, "k"),
                   nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
     if "validity" in names:
         out["validity"] = validity_flag(*(out[n] for n in ("pressure", "uz") if n in out))
@@ -209,7 +204,7 @@ def _evaluate_adhesive(names, p, options):
     wanted = list(names)
     if "critical_validity" in names and "critical_radius" not in names:
         wanted.append("critical_radius")        # the flag is read off a_c
-    out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, a=_f(p, "a"), r=_r(p),
+    out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, a=_f(p, "a"), rho=_f(p, "r"),
                   k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"), delta_gamma=_f(p, "delta_gamma"),
                   mode=p.get("control"))
     if "critical_validity" in names:
@@ -292,7 +287,7 @@ def _pair(p):
 
 def _evaluate_tangential(names, p, options):
     k, nu, e0, e2, nu2 = _pair(p)
-    out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, a=_f(p, "a"), r=_r(p),
+    out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, a=_f(p, "a"), rho=_f(p, "r"),
                   fx=_f(p, "fx"), delta_x=_f(p, "delta_x"), mu=_f(p, "mu"), c0=_f(p, "c0"), k=k, nu=nu, E0=e0,
                   E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
     if "coupling" in names:

@@ -80,19 +80,27 @@ def foundation_integral(a, fn, params, rtol, breaks=()):
     return total
 
 
-def pressure_integral(r, a, dg, params, rtol, breaks=()):
+def _scaled_breaks(breaks, lam):
+    """Break points in the integration variable x = X/lam (X the physical radius)."""
+    return [b / lam for b in np.asarray(breaks, float)]
+
+
+def pressure_integral(r, a, dg, params, rtol, breaks=(), lam=1.0):
     """(1/pi) int_r^a dg(x) (x^2 - r^2)^(-(1-k)/2) dx: eq. (13) with u'_1D = -g' on (0, a).
 
     Zero for r >= a.  The singular factor (x - r)^(-(1-k)/2) is removed with p = 2/(1+k).
+    ``r``, ``a`` may be given in units of ``lam`` (physical radii lam r, lam a; e.g. r/a and 1
+    with lam = a, so that the edge distance 1 - r/a is exact): the integral is then
+    lam^k (1/pi) int dg(lam x) (x^2 - r^2)^(-(1-k)/2) dx.
     """
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
-    shape = np.broadcast(r, *params.values()).shape
+    shape = np.broadcast(r, lam, *params.values()).shape
     m = np.broadcast_to(r < a, shape)
     out = np.zeros(shape)
     if not m.any():
         return out
-    P = _prepare({"r": r, "a": a, **params}, m)
-    ri, ai, k = P.pop("r"), P.pop("a"), P["k"]
+    P = _prepare({"r": r, "a": a, "lam": lam, **params}, m)
+    ri, ai, lam, k = P.pop("r"), P.pop("a"), P.pop("lam"), P["k"]
     alpha = -0.5 * (1.0 - k)
     # at the centre (r = 0, k > 0) both kernel factors are singular at x = 0: remove x^(-(1-k))
     # as a whole (p = 1/k), otherwise (x - r)^(-(1-k)/2) with p = 2/(1+k)
@@ -100,24 +108,25 @@ def pressure_integral(r, a, dg, params, rtol, breaks=()):
     alpha_s = np.where(centre, 2.0 * alpha, alpha)
     p_s = np.where(centre, 1.0 / np.where(centre, k, 1.0), 2.0 / (1.0 + k))
     total = 0.0
-    for x0, x1 in _pieces(ri, ai, breaks):
+    for x0, x1 in _pieces(ri, ai, _scaled_breaks(breaks, lam)):
         total = total + _singular_piece(
             x0, x1, x0 - ri, alpha_s, p_s,
-            lambda x: dg(x, **P) * np.where(centre, 1.0, (x + ri) ** alpha), rtol, toward_left=True)
-    out[m] = total / np.pi
+            lambda x: dg(lam * x, **P) * np.where(centre, 1.0, (x + ri) ** alpha), rtol, toward_left=True)
+    out[m] = lam[:, 0] ** k[:, 0] * total / np.pi
     return out
 
 
-def displacement_integral(r, a, u1d, params, rtol, breaks=()):
+def displacement_integral(r, a, u1d, params, rtol, breaks=(), lam=1.0):
     """u_z(r) = (2/pi) cos(k pi/2) int_0^min(r,a) x^k u1d(x) (r^2 - x^2)^(-(1+k)/2) dx, eq. (15).
 
     Outside (r > a) the kernel is regular but nearly singular as r -> a+ (distance r - x formed
     from the exact r - a).  Inside (r <= a) this is the inverse transform (6) of u_1D, i.e.
     d - f(r); the kernel (r - x)^(-(1+k)/2) is removed with p = 2/(1-k), and the vanishing
-    cos(k pi/2) times the growing p stays finite as k -> 1.
+    cos(k pi/2) times the growing p stays finite as k -> 1.  ``r``, ``a`` may be given in units of
+    ``lam`` as in :func:`pressure_integral` (the kernel is homogeneous of degree 0: no factor).
     """
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
-    shape = np.broadcast(r, *params.values()).shape
+    shape = np.broadcast(r, lam, *params.values()).shape
     out = np.empty(shape)
     outside = np.broadcast_to(r > a, shape)
     centre = np.broadcast_to(r == 0.0, shape)
@@ -128,14 +137,14 @@ def displacement_integral(r, a, u1d, params, rtol, breaks=()):
     for mask, upper in ((outside, "a"), (~outside & ~centre, "r")):
         if not mask.any():
             continue
-        P = _prepare({"r": r, "a": a, **params}, mask)
-        ri, ai, k = P.pop("r"), P.pop("a"), P["k"]
+        P = _prepare({"r": r, "a": a, "lam": lam, **params}, mask)
+        ri, ai, lam_m, k = P.pop("r"), P.pop("a"), P.pop("lam"), P["k"]
         top = ai if upper == "a" else ri
         alpha = -0.5 * (1.0 + k)
         total = 0.0
-        for x0, x1 in _pieces(np.zeros_like(top), top, breaks):
+        for x0, x1 in _pieces(np.zeros_like(top), top, _scaled_breaks(breaks, lam_m)):
             total = total + _singular_piece(
                 x0, x1, ri - x1, alpha, 2.0 / (1.0 - k),
-                lambda x: x ** k * u1d(x, **P) * (ri + x) ** alpha, rtol, toward_left=False)
+                lambda x, lam_m=lam_m: x ** k * u1d(lam_m * x, **P) * (ri + x) ** alpha, rtol, toward_left=False)
         out[mask] = (2.0 / np.pi) * cos_half_pi_k(k[:, 0]) * total
     return out

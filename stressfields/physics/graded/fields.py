@@ -35,24 +35,35 @@ def _quadrature(profile: Indenter, method: str, rtol: float, names: Sequence[str
     return resolve(profile.kind, method, rtol)[0] == QUADRATURE
 
 
+def _placer(rho):
+    """at(x, a) -> the kernels' point arguments {r, a, rho} for a point x that is r/a where ``rho``
+    is given (the closures then carry x = rho in place of r), else the absolute r."""
+    if rho is None:
+        return lambda x, a: dict(r=x, a=a)
+    return lambda x, a: dict(r=None, a=a, rho=x)
+
+
 def normal_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, k, nu=None, E0=None, c0=None,
-                  method: str = "auto", rtol: float = 1e-10) -> dict[str, np.ndarray]:
+                  method: str = "auto", rtol: float = 1e-10, rho=None) -> dict[str, np.ndarray]:
     """Non-adhesive normal contact of a rigid indenter: fields among :data:`NORMAL`.
 
     kappa = g(a)/f(a) (docs/theory/graded.md (G13)), depth d(a) (G15), normal_force F_N(a) (G16),
     pressure p(r; a) (G17)-(G18; +inf at r = 0 where n + k <= 1) and uz = u_z(r; a) (G20)-(G21).
+    ``rho = r/a`` may be given instead of ``r``: the kernels then work in units of a, so the edge
+    distance 1 - r/a is exact (forming r = rho a would round it).
     """
     if not names:
         return {}
     mat = dict(k=k, nu=nu, E0=E0, c0=c0)
+    at, x = _placer(rho), (r if rho is None else rho)
     if not _quadrature(profile, method, rtol, names, NORMAL):
         n, A_n = profile.power()
         closed = {
             "kappa": lambda: kappa(n, k) + 0.0 * a,
             "depth": lambda: normal.depth(a, k=k, n=n, A_n=A_n),
             "normal_force": lambda: normal.normal_force(a, **mat, n=n, A_n=A_n),
-            "pressure": lambda: normal.pressure(r, a, **mat, n=n, A_n=A_n),
-            "uz": lambda: normal.surface_displacement(r, a, k=k, n=n, A_n=A_n),
+            "pressure": lambda: normal.pressure(r, a, **mat, n=n, A_n=A_n, rho=rho),
+            "uz": lambda: normal.surface_displacement(r, a, k=k, n=n, A_n=A_n, rho=rho),
         }
         return {name: closed[name]() for name in names}
     quad = {
@@ -60,35 +71,38 @@ def normal_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, k, nu=No
         "depth": lambda prof, a, k, **_: normal.depth_quad(a, prof, k=k, rtol=rtol),
         "normal_force": lambda prof, r, a, **m: normal.normal_force_quad(a, prof, **m, rtol=rtol),
         "pressure": lambda prof, r, a, **m: at_centre(
-            r, a, prof, m["k"], lambda rr: normal.pressure_quad(rr, a, prof, **m, rtol=rtol), np.inf),
-        "uz": lambda prof, r, a, k, **_: normal.surface_displacement_quad(r, a, prof, k=k, rtol=rtol),
+            r, a, prof, m["k"], lambda rr: normal.pressure_quad(profile=prof, **at(rr, a), **m, rtol=rtol), np.inf),
+        "uz": lambda prof, r, a, k, **_: normal.surface_displacement_quad(profile=prof, **at(r, a), k=k, rtol=rtol),
     }
-    return {name: profile.each(quad[name], r=r, a=a, **mat) for name in names}
+    return {name: profile.each(quad[name], r=x, a=a, **mat) for name in names}
 
 
 def adhesive_fields(names: Sequence[str], profile: Indenter, *, a=None, r=0.0, k, nu, E0, c0, delta_gamma,
-                    mode="fixed_load", method: str = "auto", rtol: float = 1e-10) -> dict[str, np.ndarray]:
+                    mode="fixed_load", method: str = "auto", rtol: float = 1e-10, rho=None) -> dict[str, np.ndarray]:
     """Adhesive (JKR-type) contact of a rigid indenter: fields among :data:`ADHESIVE`.
 
     depth (docs/theory/graded.md (G22)), normal_force (G23), pressure (G24; -inf at r = a) at contact
     radius ``a``; the pull-off point critical_radius, critical_depth, critical_force (G26)-(G29), by
     root finding on the MDR rules on the quadrature route (G42), for each ``mode`` ("fixed_load" or
-    "fixed_grips"; an array of them broadcasts).  NaN where no critical point exists.
+    "fixed_grips"; an array of them broadcasts).  NaN where no critical point exists.  ``rho = r/a``
+    may be given instead of ``r`` (as in :func:`normal_fields`).
     """
     quad = _quadrature(profile, method, rtol, names, ADHESIVE)
     mat = dict(k=k, nu=nu, E0=E0, c0=c0, delta_gamma=delta_gamma)
+    at, x = _placer(rho), (r if rho is None else rho)
     out = {}
     if quad:
         fns = {"depth": lambda prof, r, a, **m: adhesive.depth_quad(a, prof, **m, rtol=rtol),
                "normal_force": lambda prof, r, a, **m: adhesive.normal_force_quad(a, prof, **m, rtol=rtol),
                "pressure": lambda prof, r, a, **m: at_centre(
-                   r, a, prof, m["k"], lambda rr: adhesive.pressure_quad(rr, a, prof, **m, rtol=rtol), np.inf)}
-        out.update({n: profile.each(fns[n], r=r, a=a, **mat) for n in names if n in fns})
+                   r, a, prof, m["k"], lambda rr: adhesive.pressure_quad(profile=prof, **at(rr, a), **m, rtol=rtol),
+                   np.inf)}
+        out.update({n: profile.each(fns[n], r=x, a=a, **mat) for n in names if n in fns})
     elif set(names) & {"depth", "normal_force", "pressure"}:
         n, A_n = profile.power()
         fns = {"depth": lambda: adhesive.depth(a, **mat, n=n, A_n=A_n),
                "normal_force": lambda: adhesive.normal_force(a, **mat, n=n, A_n=A_n),
-               "pressure": lambda: adhesive.pressure(r, a, **mat, n=n, A_n=A_n)}
+               "pressure": lambda: adhesive.pressure(r, a, **mat, n=n, A_n=A_n, rho=rho)}
         out.update({name: fns[name]() for name in names if name in fns})
     crit = ADHESIVE[3:]
     if set(crit) & set(names):
@@ -112,7 +126,7 @@ def adhesive_fields(names: Sequence[str], profile: Indenter, *, a=None, r=0.0, k
 
 def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0.0, delta_x=0.0, mu=None, k,
                       nu=None, E0=None, c0=None, E0_2=None, nu_2=None, require_decoupled: bool = True,
-                      method: str = "auto", rtol: float = 1e-10) -> dict[str, np.ndarray]:
+                      method: str = "auto", rtol: float = 1e-10, rho=None) -> dict[str, np.ndarray]:
     """Cattaneo-Mindlin partial slip of two graded bodies: fields among :data:`TANGENTIAL`.
 
     Body 2 as in :mod:`.tangential` (``E0_2=None`` identical, ``inf`` rigid).  stick_radius c/a
@@ -120,7 +134,7 @@ def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0
     and max_tangential_displacement (G34), force_ratio F_x/(mu F_N) under the imposed ``delta_x``
     (G35), normal_force of the pair (G16), shear_traction (G32): on the quadrature route +inf at an
     unbounded centre in gross slip and NaN there under partial slip (a difference of two unbounded
-    pressures, not evaluated).
+    pressures, not evaluated).  ``rho = r/a`` may be given instead of ``r`` (as in :func:`normal_fields`).
     """
     if not names:           # (a block holding only flags may lack the geometry)
         return {}
@@ -128,6 +142,7 @@ def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0
         E0_2, nu_2 = E0, nu
     pair = dict(k=k, nu=nu, E0=E0, E0_2=E0_2, nu_2=nu_2)
     pk = dict(pair, require_decoupled=require_decoupled)
+    at, x = _placer(rho), (r if rho is None else rho)
     if not _quadrature(profile, method, rtol, names, TANGENTIAL):
         n, A_n = profile.power()
 
@@ -141,7 +156,7 @@ def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0
             "force_ratio": lambda: tangential.force_ratio_from_displacement(np.minimum(delta_x / dmax(), 1.0),
                                                                             k=k, n=n),
             "normal_force": lambda: tangential.normal_force(a, c0=c0, n=n, A_n=A_n, **pair),
-            "shear_traction": lambda: tangential.shear_traction(r, a, fx, mu=mu, c0=c0, n=n, A_n=A_n, **pk),
+            "shear_traction": lambda: tangential.shear_traction(r, a, fx, mu=mu, c0=c0, n=n, A_n=A_n, rho=rho, **pk),
         }
         return {name: closed[name]() for name in names}
 
@@ -153,11 +168,14 @@ def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0
 
     def shear(prof, r, a, fx, mu, c0, **m):
         c = stick(prof, a, fx, m["k"])
-        kw = dict(m, c0=c0, rtol=rtol)
+        mat = dict(m, c0=c0)
+        cs = np.where(c > 0, c, a)
+        # p(r; c) in the unit of the point: c/a against r/a (lam = a), or c against r (lam = 1)
+        sc, lam = (cs / a, a) if rho is not None else (cs, 1.0)
 
         def tau(rr):
-            pc = normal.pressure_quad(rr, np.where(c > 0, c, a), prof, **kw)
-            return mu * (normal.pressure_quad(rr, a, prof, **kw) - np.where(c > 0, pc, 0.0))
+            pc = normal._pressure_quad_at(rr, sc, lam, prof, mat, rtol)
+            return mu * (normal.pressure_quad(profile=prof, **at(rr, a), **mat, rtol=rtol) - np.where(c > 0, pc, 0.0))
         # at an unbounded centre: +inf in gross slip, not evaluated (NaN, flagged) under partial slip
         return at_centre(r, a, prof, m["k"], tau, np.where(c > 0, np.nan, np.inf))
 
@@ -176,5 +194,5 @@ def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0
             normal.normal_force_quad(a, prof, c0=c0, k=k, nu=nu, E0=E0, E0_2=E0_2, nu_2=nu_2, rtol=rtol),
         "shear_traction": lambda prof, r, a, fx, mu, c0, delta_x, **m: shear(prof, r, a, fx, mu, c0, **m),
     }
-    return {name: profile.each(quad[name], r=r, a=a, fx=fx, delta_x=delta_x, mu=mu, c0=c0, **pair)
+    return {name: profile.each(quad[name], r=x, a=a, fx=fx, delta_x=delta_x, mu=mu, c0=c0, **pair)
             for name in names}

@@ -13,7 +13,7 @@ Material: E(z) = E0 (z/c0)^k; the counter-body is rigid (``E0_2 = inf``, eq. 21)
 from __future__ import annotations
 
 import numpy as np
-from scipy.special import betainc
+from scipy.special import betainc, polygamma, psi
 
 from .. import quadrature
 from . import _mdr
@@ -21,7 +21,7 @@ from ._validate import check_k, check_positive
 from .material import c_N_star, cos_half_pi_k
 from .profiles import dg_quad, g_quad, kappa
 
-__all__ = ["depth", "normal_force", "pressure", "surface_displacement", "pressure_shape",
+__all__ = ["depth", "normal_force", "pressure", "surface_displacement", "pressure_shape", "kappa_minus_one",
            "depth_quad", "normal_force_quad", "pressure_quad", "surface_displacement_quad"]
 
 #: Tolerance of the adaptive tanh-sinh evaluation of the cosh-form pressure integral; tanh-sinh
@@ -36,6 +36,48 @@ def _power_law(n, A_n):
 
 def _radii(r, a):
     return check_positive("r", r, allow_zero=True), check_positive("a", a)
+
+
+def position(r, a, rho=None):
+    """(x, s, a): the point and the contact radius in one unit, x/s = r/a exactly as given.
+
+    With ``rho = r/a`` given (the scenarios' coordinate), x = rho, s = 1: the edge distance 1 - rho
+    is then exact, whereas forming r = rho a and a - r would round it (3e-5 relative error of the
+    pressure at 1 - rho = 1e-12 for a = 0.00248).  Otherwise x = r, s = a (a - r exact).
+    """
+    a = check_positive("a", a)
+    if rho is None:
+        return check_positive("r", r, allow_zero=True), a, a
+    return check_positive("rho", rho, allow_zero=True), np.ones_like(a), a
+
+
+#: Gauss-Legendre nodes for the digamma integral of kappa - 1 (converged to rounding: the
+#: integrand's nearest singularity, s = 1, lies 3 half-widths beyond [0, 1/2], so 16 nodes give
+#: (3 + sqrt 8)^-32 ~ 1e-24)
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(16)
+
+
+def _psi_step(h, x):
+    """psi(x + h) - psi(x) with full relative accuracy also for small h (Taylor for h < 0.05,
+    9 terms: the remainder h^9/9! psi^(9) is below 1e-16 of the first term)."""
+    direct = psi(x + h) - psi(x)
+    taylor = sum(h ** j / np.prod(np.arange(1.0, j + 1.0)) * polygamma(j, x) for j in range(1, 10))
+    return np.where(h < 0.05, taylor, direct)
+
+
+def kappa_minus_one(n, k):
+    """kappa(n, k) - 1 without cancellation, docs/theory/graded.md (G43).
+
+    kappa = Gamma(1+n/2) Gamma(1-q)/Gamma(1+n/2-q), q = (1-k)/2, tends to 1 as k -> 1 (and as n -> 0);
+    log kappa = int_0^q [psi(1+n/2-s) - psi(1-s)] ds, a positive integrand done by 16-point
+    Gauss-Legendre, and kappa - 1 = expm1(log kappa).  Dimensionless.
+    """
+    n = check_positive("n", n)
+    q = 0.5 * (1.0 - check_k(k))
+    n, q = np.broadcast_arrays(n, q)
+    s = 0.5 * q[..., None] * (1.0 + _GL_X)
+    integrand = _psi_step(0.5 * n[..., None], 1.0 - s)
+    return np.expm1(0.5 * q * np.sum(_GL_W * integrand, axis=-1))
 
 
 def depth(a, *, k, n, A_n):
@@ -129,48 +171,68 @@ def _shape(r, a, k, n):
     return out
 
 
-def pressure(r, a, *, k, nu, E0, c0, n, A_n, E0_2=np.inf, nu_2=None):
+def pressure(r, a, *, k, nu, E0, c0, n, A_n, E0_2=np.inf, nu_2=None, rho=None):
     """Contact pressure p(r; a), eqs. (13), (22), Table 2 (generalised to A_n r^n, docs/theory/graded.md (G18)).
 
     Evaluated by the cosh form p = (c_N* n kappa A_n / pi) a^(n+k-1) Phi(r/a) (see
     :func:`pressure_shape`), which is regular at k -> 0 (no pole of B(-k/2, .)) and at r -> 0, and
-    keeps full accuracy as r -> a (docs/theory/graded.md (G39)).  p = 0 for r >= a; p(0) = +inf for the cone at k = 0.
-    Units of E0.
+    keeps full accuracy as r -> a (docs/theory/graded.md (G39)).  p = 0 for r >= a; p(0) = +inf where
+    n + k <= 1.  ``rho = r/a`` may be given instead of r (then r is ignored; see :func:`position`).
+    Closed form: relative error at most 1e-12 of the value.  Units of E0.
     """
     n, A_n = _power_law(n, A_n)
-    r, a = _radii(r, a)
-    cN = c_N_star(k, nu, E0, c0, E0_2, nu_2)
-    k = np.asarray(k, float)
-    pref = cN * n * kappa(n, k) * A_n * a ** (n + k - 1.0) / np.pi
-    return pref * _shape(r, a, k, n)
+    x, s, a = position(r, a, rho)
+    return _pressure_at(x, s, a, dict(k=k, nu=nu, E0=E0, c0=c0, E0_2=E0_2, nu_2=nu_2), n, A_n)
 
 
-def surface_displacement(r, a, *, k, n, A_n):
+def _pressure_at(x, s, radius, mat, n, A_n):
+    """p at the point x for the contact radius ``radius`` (x and s in one unit, x/s = r/radius)."""
+    cN = c_N_star(**mat)
+    k = np.asarray(mat["k"], float)
+    pref = cN * n * kappa(n, k) * A_n * radius ** (n + k - 1.0) / np.pi
+    return pref * _shape(x, s, k, n)
+
+
+def surface_displacement(r, a, *, k, n, A_n, rho=None):
     """Surface displacement u_z(r; a) (positive into the body) for a rigid power-law indenter.
 
-    Inside (r <= a): d - f(r).  Outside: eq. (15) in closed form, eq. (23) for n = 2 and Table 2
-    for n = 1 with the corrected second beta parameter (n+1+k)/2 (Errata 1 of docs/theory/graded.md),
-    written with regularised incomplete betas (the cos(k pi/2) Gamma((1-k)/2) product is cancelled
-    analytically), docs/theory/graded.md (G21):
-        u_z = A_n [kappa a^n I_z((1+k)/2, (1-k)/2) - r^n I_z((n+1+k)/2, (1-k)/2)],  z = a^2/r^2.
-    Independent of the elastic constants.  Units of length.
+    Inside (r <= a): d - f(r) = A_n a^n [(kappa - 1) + (1 - (r/a)^n)], both terms non-negative
+    (kappa - 1 from :func:`kappa_minus_one`, docs/theory/graded.md (G43); 1 - (r/a)^n from the exact
+    a - r): no cancellation at the edge as k -> 1, where d - f(a) -> 0.  Outside: eq. (15) in closed
+    form, eq. (23) for n = 2 and Table 2 for n = 1 with the corrected second beta parameter
+    (n+1+k)/2 (Errata 1 of docs/theory/graded.md), written with regularised incomplete betas (the
+    cos(k pi/2) Gamma((1-k)/2) product is cancelled analytically), docs/theory/graded.md (G21):
+        u_z = A_n [kappa a^n I_z((1+k)/2, (1-k)/2) - r^n I_z((n+1+k)/2, (1-k)/2)],  z = a^2/r^2,
+    and the positive series (G40) beyond r = 2a.  ``rho = r/a`` may be given instead of r.
+    Independent of the elastic constants.  Closed form: relative error at most 1e-12 of the value.
+    Units of length.
     """
     n, A_n = _power_law(n, A_n)
-    r, a = _radii(r, a)
+    x, s, a = position(r, a, rho)
     k = check_k(k)
-    kap = kappa(n, k)
-    r, a, k, n, A_n, kap = np.broadcast_arrays(r, a, k, n, A_n, kap)
-    out = np.array(kap * A_n * a ** n - A_n * r ** n, dtype=float)   # ndarray even for 0-d input
-    far = r > _SERIES_R_OVER_A * a
-    m = (r > a) & ~far
+    return A_n * a ** n * _uz_shape(x, s, k, n)
+
+
+def _uz_shape(x, s, k, n):
+    """u_z / (A_n a^n) at x/s = r/a (x, s in one unit), docs/theory/graded.md (G21), (G40), (G43)."""
+    x, s, k, n = np.broadcast_arrays(np.asarray(x, float), np.asarray(s, float), k, n)
+    out = np.empty(x.shape)
+    inside = x <= s
+    if inside.any():
+        xi, si, ni = x[inside], s[inside], n[inside]
+        with np.errstate(divide="ignore"):          # x = 0: log1p(-1) = -inf, expm1(-inf) = -1
+            one_minus = -np.expm1(ni * np.log1p(-(si - xi) / si))
+        out[inside] = kappa_minus_one(ni, k[inside]) + one_minus
+    far = x > _SERIES_R_OVER_A * s
+    m = ~inside & ~far
     if m.any():
-        rm, am, km, nm = r[m], a[m], k[m], n[m]
-        z = (am / rm) ** 2
+        km, nm = k[m], n[m]
+        z = (s[m] / x[m]) ** 2
         q = 0.5 * (1.0 - km)
-        out[m] = A_n[m] * (kap[m] * am ** nm * betainc(0.5 * (1.0 + km), q, z)
-                           - rm ** nm * betainc(0.5 * (nm + 1.0 + km), q, z))
+        out[m] = (kappa(nm, km) * betainc(0.5 * (1.0 + km), q, z)
+                  - (x[m] / s[m]) ** nm * betainc(0.5 * (nm + 1.0 + km), q, z))
     if far.any():
-        out[far] = A_n[far] * kap[far] * _far_field(r[far], a[far], k[far], n[far])
+        out[far] = kappa(n[far], k[far]) * _far_field(x[far], s[far], k[far], n[far]) / s[far] ** n[far]
     return out
 
 
@@ -226,22 +288,30 @@ def normal_force_quad(a, profile, *, k, nu, E0, c0, E0_2=np.inf, nu_2=None, rtol
     return 2.0 * cN * _mdr.foundation_integral(a, _u1d(profile, rtol), {"k": k, "d": d}, rtol, profile.breaks)
 
 
-def pressure_quad(r, a, profile, *, k, nu, E0, c0, E0_2=np.inf, nu_2=None, rtol=1e-10):
+def pressure_quad(r, a, profile, *, k, nu, E0, c0, E0_2=np.inf, nu_2=None, rtol=1e-10, rho=None):
     """p(r; a) = (c_N*/pi) int_r^a g'(x) (x^2 - r^2)^(-(1-k)/2) dx by quadrature.
 
-    Eq. (13), docs/theory/graded.md (G17).
+    Eq. (13), docs/theory/graded.md (G17).  ``rho = r/a`` may be given instead of r (the integral
+    is then done in units of a, the edge distance 1 - rho exact).  Relative error below rtol.
     """
-    r, a = _radii(r, a)
+    x, s, a = position(r, a, rho)
     _check_profile_range(a, profile)
-    cN = c_N_star(k, nu, E0, c0, E0_2, nu_2)
-    return cN * _mdr.pressure_integral(r, a, _dg(profile, rtol), {"k": check_k(k)}, rtol, profile.breaks)
+    return _pressure_quad_at(x, s, a / s, profile, dict(k=k, nu=nu, E0=E0, c0=c0, E0_2=E0_2, nu_2=nu_2), rtol)
 
 
-def surface_displacement_quad(r, a, profile, *, k, rtol=1e-10):
+def _pressure_quad_at(x, s, lam, profile, mat, rtol):
+    """p at the physical radius lam x for the contact radius lam s (quadrature in units of lam)."""
+    cN = c_N_star(**mat)
+    k = check_k(mat["k"])
+    return cN * _mdr.pressure_integral(x, s, _dg(profile, rtol), {"k": k}, rtol, profile.breaks, lam=lam)
+
+
+def surface_displacement_quad(r, a, profile, *, k, rtol=1e-10, rho=None):
     """u_z(r; a) by quadrature of eq. (15) outside and of its inverse-transform form inside.
 
-    docs/theory/graded.md (G20).
+    docs/theory/graded.md (G20).  ``rho = r/a`` may be given instead of r.  Relative error below rtol.
     """
-    r, a = _radii(r, a)
+    x, s, a = position(r, a, rho)
     d = depth_quad(a, profile, k=k, rtol=rtol)
-    return _mdr.displacement_integral(r, a, _u1d(profile, rtol), {"k": check_k(k), "d": d}, rtol, profile.breaks)
+    return _mdr.displacement_integral(x, s, _u1d(profile, rtol), {"k": check_k(k), "d": d}, rtol, profile.breaks,
+                                      lam=a / s)

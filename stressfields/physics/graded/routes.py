@@ -14,7 +14,13 @@ CLOSED = "closed form (Tables 1-3)"
 #: tanh-sinh quadrature of the MDR rules for any profile object (docs/theory/graded.md (G42))
 QUADRATURE = "quadrature of the MDR rules (eq. 5, 10-15, 27-31, 41-43)"
 
-_CLOSED_ACCURACY = "double-precision rounding (relative error about 1e-13)"
+#: the accuracy contract of the family, as written into the files (docs/theory/graded.md (G43), (G44))
+_CLOSED_ACCURACY = ("relative error at most 1e-12 of |value| everywhere the value is finite, far field and next "
+                    "to edges included")
+
+
+def _quadrature_accuracy(rtol: float) -> str:
+    return f"relative error at most rtol = {rtol:g} of |value| (graded: rtol is relative to |value|)"
 
 
 def resolve(profile_kind: str, method: str, rtol: float) -> tuple[str, str]:
@@ -31,5 +37,5 @@ def resolve(profile_kind: str, method: str, rtol: float) -> tuple[str, str]:
     if method == "closed" and profile_kind == "tabulated":
         raise ValueError("method = 'closed' has no closed form for a tabulated profile; use 'auto' or 'quadrature'")
     if method == "quadrature" or profile_kind == "tabulated":
-        return QUADRATURE, f"relative error below rtol = {rtol:g}"
+        return QUADRATURE, _quadrature_accuracy(rtol)
     return CLOSED, _CLOSED_ACCURACY
