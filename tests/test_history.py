@@ -285,3 +285,67 @@ def test_cone_tip_values_follow_the_monotonic_conventions():
             assert np.isfinite(s["xz"])
         else:
             assert s["xz"] == xz
+
+
+# -- cycles that close inside a step ---------------------------------------------------------------
+
+def brute_path(history, xs, ws, nu, mu, profile, sub=4000):
+    """Fine sub-steps of every monotonic step through the stop operators: u, F_x/(mu F_N) and the
+    cumulative dissipation W/(mu F_N delta) at every sub-step (units of delta)."""
+    L = mu / kappa(nu) * (1 - profile.g(xs) / profile.g(1.0))
+    norm = mu * profile.normal_force(1.0) / (kappa(nu) * profile.g(1.0))   # mu F_N / (G* delta)
+    s, u, W = np.zeros_like(xs), 0.0, 0.0
+    path = [(0.0, 0.0, 0.0)]
+    for target in history:
+        for v in np.linspace(u, target, sub + 1)[1:]:
+            new = np.clip(s + (v - u), -L, L)
+            W += 2 * np.sum(ws * L * (abs(v - u) - np.abs(new - s))) / norm
+            s, u = new, v
+            path.append((u, 2 * np.sum(ws * s) / norm, W))
+    return np.array(path)
+
+
+@pytest.mark.parametrize("name", ["paraboloid", "cone", "power_law", "tabulated"])
+def test_cycle_closing_inside_a_step_brute_force(name):
+    """The reproducer: the loop u1 -> -u1 -> u1 closes during the move to 1.2 u1 (step 3).  Its
+    energy is the brute-force dissipation between the two visits of u1, and equals the loop area
+    closed integral F_x du of the brute-force force (the elastic energy returns)."""
+    profile, nu, mu = PROFILES[name], 0.3, 0.3
+    u1 = 0.5 * mu / kappa(nu)
+    hist = [0.0, u1, -u1, 1.2 * u1]
+    got = h.cycle_energy(hist, 1.0, nu, mu, profile)
+    assert got[:3].tolist() == [0.0, 0.0, 0.0]
+    xs, ws = gl_panels(1.0)
+    sub = 5500
+    path = brute_path(hist, xs, ws, nu, mu, profile, sub=sub)
+    i_open = 2 * sub                                  # end of step 1 (u = u1)
+    i_close = 3 * sub + 5000                          # u back at u1 during step 3 (2 u1 of 2.2 u1)
+    assert path[i_close, 0] == pytest.approx(u1, rel=1e-12)
+    brute_w = path[i_close, 2] - path[i_open, 2]
+    assert got[3] == pytest.approx(brute_w, rel=2e-5)
+    loop = path[i_open:i_close + 1]
+    area = np.sum(0.5 * (loop[1:, 1] + loop[:-1, 1]) * np.diff(loop[:, 0]))
+    assert got[3] == pytest.approx(area, rel=1e-4)            # the work of F_x over the loop
+    if name == "paraboloid":                          # Mindlin–Deresiewicz (A77), x = F1/(mu F_N)
+        x = 1 - 0.5 ** 1.5
+        md = 24 / 5 * (1 - (1 - x) ** (5 / 3) - 5 * x / 6 * (1 + (1 - x) ** (2 / 3)))
+        assert got[3] / (mu / kappa(nu)) == pytest.approx(md, rel=1e-10)
+
+
+def test_nested_cycles_inside_one_step_count_the_outermost():
+    """The move into the last step closes 0.6 -> 0.4 -> 0.6 and then 1 -> 0.2 -> 1 on the way: the
+    outer cycle (which contains the inner one) is counted; a cycle closing at the end of a step is
+    counted as before."""
+    nu, mu, p = 0.3, 0.4, ax.paraboloid(1.0)
+    ustar = mu / kappa(nu)
+    hist = [s * ustar for s in (0.5, 0.1, 0.3, 0.2, 0.6, 0.1, 0.5)]
+    got = h.cycle_energy(hist, 1.0, nu, mu, p)
+    xs, ws = gl_panels(1.0)
+    sub = 4000
+    path = brute_path([0.0] + hist, xs, ws, nu, mu, p, sub=sub)
+    # step 5 (0.2 -> 0.6 u*) passes 0.3 (inner) and 0.5 u* (outer, opened at step 1)
+    i_close = 5 * sub + round(sub * 0.75)
+    assert path[i_close, 0] == pytest.approx(0.5 * ustar, rel=1e-12)
+    assert got[4] == pytest.approx(path[i_close, 2] - path[2 * sub, 2], rel=2e-5)
+    # step 7 ends back at 0.5 u*: the loop 0.6 -> 0.1 -> 0.6 is not closed, nothing counted
+    assert got[6] == 0.0 and got[:4].tolist() == [0.0] * 4

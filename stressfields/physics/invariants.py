@@ -7,12 +7,13 @@ formula, like the standard definition, is sqrt(3 J2)).  Principal stresses are t
 
 Arrays broadcast against each other; any non-finite component gives NaN at that point (an
 infinite component leaves the invariants undefined without the limit process), never an error.
+``singular_limits`` gives that limit where the caller knows how the components grow.
 """
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["von_mises", "principal_stresses"]
+__all__ = ["von_mises", "principal_stresses", "singular_limits"]
 
 _CHUNK = 1 << 16
 
@@ -57,3 +58,41 @@ def principal_stresses(sxx, syy, szz, sxy, sxz, syz):
         m[:, 1, 2] = m[:, 2, 1] = yz[sl]
         out[good[sl]] = np.linalg.eigvalsh(m)[:, ::-1]  # ascending -> descending
     return tuple(out[:, k].reshape(shape) for k in range(3))
+
+
+def singular_limits(lead, rest):
+    """Limits of the invariants of a tensor lam * lead + rest + o(1) as lam -> +inf: the exact
+    values at a singular point whose components are infinite with known ratios (the family's entry
+    point knows ``lead`` and, where it matters, the bounded remainder ``rest``).
+
+    ``lead``, ``rest``: stacked symmetric matrices (n, 3, 3); NaN entries of ``rest`` mean
+    unknown (e.g. direction-dependent).  Returns (von_mises, (s1, s2, s3)): a principal stress is
+    +-inf with the sign of the eigenvalue of ``lead``; where that eigenvalue is 0 it is the limit
+    of the eigenvalue of ``rest`` projected on the null space of ``lead`` (first-order
+    perturbation; NaN if ``rest`` is unknown).  Von Mises is +inf where ``lead`` has a deviatoric
+    part, else the von Mises stress of ``rest``.  A row of ``lead`` with NaN gives NaN throughout."""
+    lead = np.asarray(lead, dtype=float)
+    rest = np.asarray(rest, dtype=float)
+    n = lead.shape[0]
+    known = np.all(np.isfinite(lead.reshape(n, 9)), axis=1)
+    safe = np.where(known[:, None, None], lead, 0.0)
+    vals, vecs = np.linalg.eigh(safe)
+    size = np.max(np.abs(vals), axis=1, keepdims=True)
+    # eigenvalues of the leading matrix that are zero up to its rounding (exact zeros, e.g. the
+    # hoop stress of a flat punch edge at nu = 0, come out as ~1e-17 of the norm)
+    zero = np.abs(vals) <= 64.0 * np.finfo(float).eps * size
+    with np.errstate(invalid="ignore"):
+        principal = np.where(zero, np.nan, np.sign(vals) * np.inf)
+    for i in np.flatnonzero(np.any(zero, axis=1) & known):
+        basis = vecs[i][:, zero[i]]
+        principal[i, zero[i]] = np.linalg.eigvalsh(basis.T @ rest[i] @ basis)
+    principal = np.sort(principal, axis=1)[:, ::-1]   # NaN sorts last: ``principal[~known]`` below
+    principal[~known] = np.nan
+    dev = safe - np.trace(safe, axis1=1, axis2=2)[:, None, None] / 3.0 * np.eye(3)
+    hydrostatic = np.max(np.abs(dev).reshape(n, 9), axis=1) <= 64.0 * np.finfo(float).eps * size[:, 0]
+    with np.errstate(invalid="ignore"):
+        vm_rest = von_mises(rest[:, 0, 0], rest[:, 1, 1], rest[:, 2, 2], rest[:, 0, 1], rest[:, 0, 2],
+                            rest[:, 1, 2])
+    vm = np.where(hydrostatic, vm_rest, np.inf)
+    vm[~known] = np.nan
+    return vm, tuple(principal[:, k] for k in range(3))

@@ -59,7 +59,9 @@ PROFILE_R = Parameter("profile_r", "radii of the tabulated profile f(r), from 0 
                       "divided by the contact radius a, covering [0, 1])", units="1", units_physical="m",
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
 PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-decreasing (normalised "
-                      "mode: any length unit, the scale cancels)", units="1", units_physical="m",
+                      "mode: any length unit, the scale cancels), interpolated by a not-a-knot cubic spline; "
+                      "data whose contact pressure would be tensile anywhere in the contact (p < -1e-9 p_m) "
+                      "are refused by the recipe check", units="1", units_physical="m",
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
 
 
@@ -194,12 +196,16 @@ def check_profile(values, physical, method):
             problems.append(f"profile_r must start at 0, got {r[0]!r}")
         if not physical and r[-1] < 1.0:
             problems.append(f"profile_r must cover the contact, r/a in [0, 1]; it ends at {r[-1]!r}")
+        radii = [1.0] if not physical and r[-1] >= 1.0 else []
         if physical and "delta" in values:
             deltas = np.atleast_1d(values["delta"])
             reach = float(profile.depth(r[-1]))
             if np.any(deltas > reach):
                 problems.append(f"delta = {float(deltas.max())!r} m exceeds the depth {reach!r} m at which the "
                                 f"contact reaches the end of the table, r = {r[-1]!r} m; extend profile_r")
+            elif np.all(deltas > 0.0):
+                radii = [float(v) for v in ax.contact_radius(profile, np.unique(deltas))]
+        problems += _tensile(profile, radii, physical)
     if kind == "flat_punch" and isinstance(values.get("delta"), np.ndarray):
         problems.append("delta cannot be swept for profile = 'flat_punch': its contact radius is the punch "
                         "radius and every field scales with delta; give one value")
@@ -207,6 +213,24 @@ def check_profile(values, physical, method):
         problems.append(f"method.method = 'closed' has no closed form for profile = {kind!r}; "
                         "use 'auto' or 'quadrature'")
     return problems
+
+
+#: p / p_m below this is tensile: far beyond the quadrature's error (1e-10 p_m) of ``min_pressure``
+_TENSILE = -1e-9
+
+
+def _tensile(profile, radii, physical) -> list[str]:
+    """A tabulated profile whose contact pressure would be tensile somewhere (outside the model:
+    no adhesion) is refused, with where and how much (``physics.axisymmetric.min_pressure``)."""
+    for a in radii:
+        p, at = ax.min_pressure(profile, a)
+        if p < _TENSILE:
+            where = f"r = {at!r} m with a = {a!r} m" if physical else f"r/a = {at:.6g}"
+            return [f"profile_r/profile_f: the contact pressure of this profile would be tensile, p = {p:.4g} p_m "
+                    f"at {where} (the cubic spline through the points, the profile used, makes the surface "
+                    f"bend away from the indenter there): a contact without adhesion cannot reach this "
+                    f"radius; give more points or a profile that does not flatten inside the contact"]
+    return []
 
 
 def route_of(kind: str | None = None, default: str = PROFILE.default):

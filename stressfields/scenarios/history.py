@@ -67,13 +67,17 @@ def _history_variables() -> tuple[Variable, ...]:
                  "indentation depth)", dims=CASE,
                  comment="over a closed cycle the difference equals the area of the F_x-u_x0 loop; at mu = 0 "
                          "the normalised value is the limit mu -> 0+ (the sum of |du_x0|/delta)"),
-        Variable("cycle_energy", "energy dissipated in the hysteresis cycle that closes at this step (the area "
-                 "of its F_x-u_x0 loop; 0 where no cycle closes)", units_physical="J",
+        Variable("cycle_energy", "energy dissipated in the hysteresis cycle that closes during the move into "
+                 "this step, at its end or on the way (the area of its F_x-u_x0 loop; 0 where no cycle closes)",
+                 units_physical="J",
                  scale="mu F_N delta (coefficient of friction times normal force times indentation depth)",
                  dims=CASE,
-                 comment="a cycle closes at step j when the spring state equals that of an earlier step i "
-                         "(the latest such, with other states in between): cycle_energy = dissipated_energy[j] "
-                         "- dissipated_energy[i]"),
+                 comment="a cycle closes where u_x0 returns to the turning point that opened it (or passes the "
+                         "mirror -e_1 of the only one), so that the spring state equals that of an earlier "
+                         "point of the history (the latest such, with other states in between); cycle_energy "
+                         "is the energy dissipated between the two, for the outermost cycle closing during the "
+                         "move (cycles closing within one move are nested). For a cycle closing at the end of "
+                         "step j on the state of step i it is dissipated_energy[j] - dissipated_energy[i]"),
         Variable("ux0", "tangential rigid-body displacement u_x0 at this step divided by the indentation depth "
                  "delta (amplitude times ux0_history)", dims=("amplitude", "step")),
     )

@@ -4,7 +4,7 @@ normal gradient of the hydrostatic pressure under normal and Cattaneo–Mindlin 
 E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic pressure in the
 contact plane of axisymmetric bodies under normal and tangential loading", Forschung im
 Ingenieurwesen (2020); the equations as implemented, with conventions, stable forms and errata, are
-in docs/theory/axisymmetric.md (A1)-(A94).  Pure NumPy/SciPy; results divided by E*.
+in docs/theory/axisymmetric.md (A1)-(A98).  Pure NumPy/SciPy; results divided by E*.
 
 ``fields`` (and ``history_fields`` for tangential loading histories) computes every surface field
 of a scenario in one call; ``routes`` is the one table of which profiles have closed forms and
@@ -15,12 +15,12 @@ from .fields import (FIELDS, HISTORY_FIELDS, HISTORY_LOADS, PRINCIPAL, STRESS, c
 from .profiles import (FlatPunch, Cone, Paraboloid, PowerLaw, Profile, Tabulated, cone, flat_punch,
                        paraboloid, power_law, tabulated)
 from .routes import METHODS, Route, has_closed_form, resolve
-from .surface import COMPONENTS, mean_pressure, stick_radius, surface_dpdz, surface_stress
+from .surface import COMPONENTS, mean_pressure, min_pressure, stick_radius, surface_dpdz, surface_stress
 
 __all__ = [
     "Profile", "Cone", "Paraboloid", "PowerLaw", "FlatPunch", "Tabulated",
     "cone", "paraboloid", "power_law", "flat_punch", "tabulated",
-    "COMPONENTS", "surface_stress", "surface_dpdz", "stick_radius", "mean_pressure",
+    "COMPONENTS", "surface_stress", "surface_dpdz", "stick_radius", "mean_pressure", "min_pressure",
     "STRESS", "PRINCIPAL", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS", "fields", "history_fields",
     "contact_radius", "validity_flag",
     "METHODS", "Route", "has_closed_form", "resolve",

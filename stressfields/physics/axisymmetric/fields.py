@@ -17,12 +17,13 @@ from the scaled tensor.  Pure NumPy/SciPy.
 from __future__ import annotations
 
 import functools
+import math
 from typing import Callable, Iterable
 
 import numpy as np
 
 from ..flags import validity_flag
-from ..invariants import principal_stresses, von_mises
+from ..invariants import principal_stresses, singular_limits, von_mises
 from . import history as hist
 from .profiles import Profile
 from .routes import Route, resolve
@@ -96,7 +97,9 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu,
         spatial, scale, dpdz_scale,
         stress=lambda comps: surface_stress(x, y, a, c_kernel, nu, mu_kernel, profile, components=comps, **kw),
         dpdz=lambda: surface_dpdz(x, y, a, c_kernel, nu, mu_kernel, profile, **kw),
-        region=lambda: _region(np.hypot(x, y), a, c, (mu == 0) | (ux0 == 0))))
+        region=lambda: _region(np.hypot(x, y), a, c, (mu == 0) | (ux0 == 0)),
+        singular=lambda tensor, idx: _singular(profile, tensor, idx, x, y, a, nu, mu_kernel,
+                                               np.where((mu_kernel > 0) & (c_kernel == 0), mu_kernel, 0.0), scale)))
     if "validity" in names:
         out["validity"] = validity_flag(*(out[n] for n in out if n in _VALUED))
     return out, route
@@ -114,8 +117,9 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a,
     the move into this step and "contact without tangential traction" for mu = 0, amplitude 0 or
     no displacement yet, the validity flag) and the loads "stick_radius" (the current branch's, in
     length units; a before any displacement), "tangential_force" F_x / (mu F_N) (A75),
-    "dissipated_energy" (from the start) and "cycle_energy" (of the hysteresis cycle closing at
-    this step, 0 where none closes), both divided by mu F_N delta (A76).  At mu = 0 the loads are
+    "dissipated_energy" (from the start) and "cycle_energy" (of the outermost hysteresis cycle
+    closing during the move into this step, at its end or on the way, (A95); 0 where none
+    closes), both divided by mu F_N delta (A76).  At mu = 0 the loads are
     the limits mu -> 0+.
 
     ``history``: the values u_x0/delta, in order, from the unloaded start; ``step``: integer
@@ -126,7 +130,7 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a,
     names = _known(names, HISTORY_FIELDS)
     route = resolve(profile, method, rtol)
     history = tuple(float(v) for v in np.asarray(history, dtype=float).ravel())
-    sts, cycles = _memory(history)
+    sts = _memory(history)
     spatial = [n for n in names if n in SPATIAL]
     arrays = {k: np.asarray(v, dtype=float) for k, v in (("nu", nu), ("mu", mu), ("amplitude", amplitude))}
     if spatial:
@@ -147,7 +151,7 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a,
         A, NU, MU = P["a"], P["nu"], P["mu"]
         terms = [(lam * P["amplitude"], w) for lam, w in sts[int(s)].terms()]
         terms = terms if np.any(P["amplitude"] > 0) else []
-        part = _history_loads(names, A, NU, MU, P["amplitude"], profile, terms, history, int(s), cycles)
+        part = _history_loads(names, A, NU, MU, P["amplitude"], profile, terms, history, int(s))
         if valued:
             part.update(_surface(
                 valued, P["scale"], P["dpdz_scale"],
@@ -156,7 +160,9 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a,
                 dpdz=lambda: hist.history_dpdz(P["x"], P["y"], A, NU, MU, profile, terms, **kw),
                 region=lambda: _region(np.hypot(P["x"], P["y"]), A,
                                        hist.current_stick_radius(terms, A, NU, MU, profile),
-                                       (MU == 0) | (P["amplitude"] == 0) | (not terms))))
+                                       (MU == 0) | (P["amplitude"] == 0) | (not terms)),
+                singular=lambda tensor, i: _singular(profile, tensor, i, P["x"], P["y"], A, NU, MU,
+                                                     _gross_weight(terms, A, NU, MU, profile) * MU, P["scale"])))
         for n, v in part.items():
             results[n][idx] = v
     out = {n: v.reshape(shape) for n, v in results.items()}
@@ -182,10 +188,13 @@ def _known(names: Iterable[str], allowed: tuple[str, ...]) -> list[str]:
 
 
 def _surface(names: list[str], scale, dpdz_scale, *, stress: Callable[[tuple[str, ...]], dict],
-             dpdz: Callable[[], np.ndarray], region: Callable[[], np.ndarray]) -> dict[str, np.ndarray]:
+             dpdz: Callable[[], np.ndarray], region: Callable[[], np.ndarray],
+             singular: Callable | None = None) -> dict[str, np.ndarray]:
     """The stress block (the tensor times ``scale``, von Mises (A60), principal stresses), dp/dz
     times ``dpdz_scale`` (default ``scale``) and the region flag, each computed only if requested;
-    ``stress(components)`` gives the tensor / E*, ``dpdz()`` dp/dz / (E*/length)."""
+    ``stress(components)`` gives the tensor / E*, ``dpdz()`` dp/dz / (E*/length).  Where a
+    component is infinite the invariants are the limits of ``singular(tensor, flat indices)`` ->
+    (lead, rest), see ``_singular`` (A97)."""
     out: dict[str, np.ndarray] = {}
     want = [n for n in names if n in STRESS]
     if any(n in names for n in ("von_mises",) + PRINCIPAL):
@@ -199,10 +208,84 @@ def _surface(names: list[str], scale, dpdz_scale, *, stress: Callable[[tuple[str
         if any(n in names for n in PRINCIPAL):
             out.update((n, v) for n, v in zip(PRINCIPAL, principal_stresses(*(tensor[s] for s in STRESS)))
                        if n in names)
+        inv = [n for n in ("von_mises",) + PRINCIPAL if n in names]
+        if inv and singular is not None:
+            shape = np.broadcast_shapes(*(np.shape(tensor[s]) for s in STRESS))
+            infinite = np.zeros(shape, dtype=bool)
+            for s in STRESS:
+                infinite |= np.isinf(tensor[s])
+            idx = np.flatnonzero(infinite)
+            if idx.size:
+                vm, pr = singular_limits(*singular(tensor, idx))
+                for n, v in zip(("von_mises",) + PRINCIPAL, (vm,) + pr):
+                    if n in inv:
+                        out[n] = np.array(np.broadcast_to(out[n], shape))
+                        out[n].flat[idx] = v
     if "dpdz" in names:
         out["dpdz"] = dpdz() * (scale if dpdz_scale is None else dpdz_scale)
     if "region" in names:
         out["region"] = region()
+    return out
+
+
+def _singular(profile: Profile, tensor, idx, x, y, a, nu, mu_kernel, mu_lead, scale):
+    """(lead, rest) of the stress tensor lam * lead + rest + o(1), lam -> +inf, at the points
+    ``idx`` (flat indices into the tensor's shape) where a component is infinite; NaN where the
+    limit is not known (docs/theory/axisymmetric.md (A97)).
+
+    * Conical or sharper tip r = 0 (g' ~ B u^m, m <= 0): the pressure p ~ lam grows, and
+      sigma_rr, sigma_phiphi, sigma_zz -> -p (rho_r, rho_phi, 1) with rho_r = 1 - (1-2nu)/(m+2),
+      rho_phi = 2 nu + (1-2nu)/(m+2) (the surface relation sigma_rr = -p + (1-2nu)/r^2 int_0^r p s
+      ds with p ~ r^m, or ln r for m = 0); in gross slip sigma_xz -> -mu_lead p.  For m < 0 in
+      gross slip the in-plane block is not isotropic and the limit depends on the direction
+      (unknown).  At nu = 1/2 the normal part is exactly hydrostatic and the remainder is the
+      tangential part, sigma_xz alone (the stick zone carries no in-plane tangential stress).
+    * Flat-punch edge r = a (from inside, at the point's own angle): p ~ 1/sqrt(a^2 - r^2) and
+      (rr, phiphi, zz) -> -p (1, 2 nu, 1), sigma_xz -> -mu p; remainder (P q/a)(1, -1, 0), P the
+      depth/pi, q = 1 - 2 nu (A12), (A29)."""
+    shape = np.broadcast_shapes(*(np.shape(tensor[s]) for s in STRESS))
+    X, Y, A, NU, MU, ML, SC = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel()[idx]
+                               for v in (x, y, a, nu, mu_kernel, mu_lead, scale))
+    XZ = np.broadcast_to(tensor["sigma_xz"], shape).ravel()[idx]
+    r = np.hypot(X, Y)
+    n = idx.size
+    lead = np.full((n, 3, 3), np.nan)
+    rest = np.full((n, 3, 3), np.nan)
+    q = 1.0 - 2.0 * NU
+    if profile.kind == "flat_punch":
+        edge = r == A
+        c, s = np.where(edge, X / np.where(edge, A, 1.0), 0.0), np.where(edge, Y / np.where(edge, A, 1.0), 0.0)
+        block = np.zeros((n, 3, 3))
+        block[:, 0, 0], block[:, 1, 1], block[:, 2, 2] = c * c + 2 * NU * s * s, s * s + 2 * NU * c * c, 1.0
+        block[:, 0, 1] = block[:, 1, 0] = q * c * s
+        block[:, 0, 2] = block[:, 2, 0] = np.where(MU > 0, MU, 0.0)
+        k = SC * q * profile.closed[2] / (math.pi * A)
+        tail = np.zeros((n, 3, 3))
+        tail[:, 0, 0], tail[:, 1, 1] = k * (c * c - s * s), k * (s * s - c * c)
+        tail[:, 0, 1] = tail[:, 1, 0] = 2.0 * k * c * s
+        lead[edge], rest[edge] = -block[edge], tail[edge]
+        return lead, rest
+    m = getattr(profile, "tip_exponent", 1.0)
+    tip = (r == 0.0) & (m <= 0.0) & ((m == 0.0) | (ML == 0.0))
+    rho_r, rho_f = 1.0 - q / (m + 2.0), 2.0 * NU + q / (m + 2.0)
+    block = np.zeros((n, 3, 3))
+    block[:, 0, 0], block[:, 1, 1], block[:, 2, 2] = rho_r, rho_f, 1.0
+    block[:, 0, 2] = block[:, 2, 0] = ML
+    lead[tip] = -math.copysign(1.0, profile.tip_coefficient) * block[tip]
+    known = tip & (NU == 0.5) & (ML == 0.0) & np.isfinite(XZ)
+    tail = np.zeros((n, 3, 3))
+    tail[:, 0, 2] = tail[:, 2, 0] = XZ
+    rest[known] = tail[known]
+    return lead, rest
+
+
+def _gross_weight(terms, a, nu, mu, profile) -> np.ndarray:
+    """Net weight of the history's c-terms in gross slip (stick radius 0): sigma_xz at a conical
+    tip grows like -mu times it times the pressure."""
+    shape = np.broadcast_shapes(*(np.shape(v) for v in (a, nu, mu)))
+    out = np.zeros(shape)
+    for (_, w), c in zip(terms, hist.stick_radii(terms, a, nu, mu, profile)):
+        out = out + np.where(c == 0.0, w, 0.0)
     return out
 
 
@@ -214,11 +297,9 @@ def _region(r, a, c, free) -> np.ndarray:
 
 
 @functools.lru_cache(maxsize=32)
-def _memory(history: tuple) -> tuple[list, list]:
-    """Spring memory of every step and the closed cycles of a history (``history.states``,
-    ``history.closed_cycles``)."""
-    sts = hist.states(history)
-    return sts, hist.closed_cycles(sts)
+def _memory(history: tuple) -> list:
+    """Spring memory of every step of a history (``history.states``)."""
+    return hist.states(history)
 
 
 @functools.lru_cache(maxsize=256)
@@ -226,7 +307,12 @@ def _energy(history: tuple, a: float, nu: float, mu: float, profile: Profile, am
     return hist.dissipated_energy(history, a, nu, mu, profile, scale=amplitude)
 
 
-def _history_loads(names, a, nu, mu, amplitude, profile, terms, history, step, cycles) -> dict[str, np.ndarray]:
+@functools.lru_cache(maxsize=256)
+def _cycle(history: tuple, a: float, nu: float, mu: float, profile: Profile, amplitude: float) -> np.ndarray:
+    return hist.cycle_energy(history, a, nu, mu, profile, scale=amplitude)
+
+
+def _history_loads(names, a, nu, mu, amplitude, profile, terms, history, step) -> dict[str, np.ndarray]:
     """The loads of one step on 1-D arrays a, nu, mu, amplitude: stick radius, F_x / (mu F_N) and
     the energies / (mu F_N delta), the energy once per distinct (a, nu, mu, amplitude)."""
     out = {}
@@ -241,10 +327,11 @@ def _history_loads(names, a, nu, mu, amplitude, profile, terms, history, step, c
         total = np.empty(len(uniq))
         cycle = np.zeros(len(uniq))
         for i, (ai, nui, mui, ampi) in enumerate(uniq):
-            w = _energy(history, float(ai), float(nui), float(mui), profile, float(ampi))
-            total[i] = w[step]
-            if cycles[step] is not None:
-                cycle[i] = w[step] - w[cycles[step]]
+            args = (history, float(ai), float(nui), float(mui), profile, float(ampi))
+            if "dissipated_energy" in names:
+                total[i] = _energy(*args)[step]
+            if "cycle_energy" in names:
+                cycle[i] = _cycle(*args)[step]
         inverse = inverse.ravel()
         if "dissipated_energy" in names:
             out["dissipated_energy"] = total[inverse]

@@ -49,7 +49,8 @@ import numpy as np
 from ..quadrature import segment_rule
 from .surface import stick_radius, surface_dpdz, surface_stress
 
-__all__ = ["State", "states", "closed_cycles", "stick_radii", "current_stick_radius", "slip_zones",
+__all__ = ["State", "states", "closed_cycles", "timeline", "cycle_closures", "cycle_energy", "stick_radii",
+           "current_stick_radius", "slip_zones",
            "history_stress", "history_dpdz", "tangential_force", "dissipated_energy", "spring_state"]
 
 _INPLANE = ("xx", "yy", "xy")
@@ -131,6 +132,56 @@ def closed_cycles(sts: list[State]) -> list[int | None]:
                 found = i
                 break
         out.append(found)
+    return out
+
+
+def _wipes(s: State, u_new: float) -> list[tuple[float, State]]:
+    """The points strictly inside the monotonic move s.u -> u_new where the memory is wiped
+    (a loop closes on reaching the turning point that opened it, or -e_1 restores the virgin
+    curve), in the order passed, each with its state ``s.move(u)``."""
+    d = 1 if u_new > s.u else -1
+    e = list(s.turning)
+    if s.direction not in (0, d):
+        e.append(s.u)
+    out = []
+    while e:
+        # a loop e_k-1 -> e_k closes at u = e_k-1; the last turning point is wiped at -e_1
+        point = -e[0] if len(e) == 1 else e[-2]
+        if not (d * (point - s.u) > 0.0 and d * (u_new - point) > 0.0):
+            break
+        out.append((point, s.move(point)))
+        del e[-2:]
+    return out
+
+
+def timeline(history) -> list[tuple[int, float, State]]:
+    """Every point of the path where the memory can return to an earlier state: (step, u, state)
+    for each wipe inside the move into a step (``_wipes``) and for each step's end, in order."""
+    out, prev = [], State()
+    for j, s in enumerate(states(history)):
+        if s.u != prev.u:
+            out += [(j, u, mid) for u, mid in _wipes(prev, s.u)]
+        out.append((j, s.u, s))
+        prev = s
+    return out
+
+
+def cycle_closures(history) -> list[tuple[int, int] | None]:
+    """For each step j the outermost hysteresis cycle that closes during the move into it (at its
+    end or on the way): (k, i), indices into ``timeline``, k the last point of step j whose state
+    equals that of an earlier point i (the latest such, with a different state in between), else
+    None.  The cycles closing within one monotonic move are nested, so the last one encloses the
+    others (docs/theory/axisymmetric.md (A95))."""
+    line = timeline(history)
+    out: list[tuple[int, int] | None] = [None] * len({j for j, _, _ in line})
+    for k, (j, _, s) in enumerate(line):
+        changed = False
+        for i in range(k - 1, -1, -1):
+            if line[i + 1][2] != s:
+                changed = True
+            if changed and line[i][2] == s:
+                out[j] = (k, i)
+                break
     return out
 
 
@@ -310,6 +361,25 @@ def _step_dissipation(before, after, du, a, nu, mu, profile, nodes) -> float:
     lam = mu / gstar * ghat
     slip = np.maximum(abs(du) - np.abs(_s(after, lam) - _s(before, lam)), 0.0)
     return float(2.0 * delta * np.sum(ws * ghat * slip) / profile.normal_force(a))
+
+
+def cycle_energy(history, a, nu, mu, profile, *, scale: float = 1.0, nodes: int = 24) -> np.ndarray:
+    """Energy dissipated in the hysteresis cycle that closes during the move into each step (the
+    outermost one, ``cycle_closures``; 0 where none closes), divided by mu F_N delta; scalar a, nu,
+    mu.  W(closing point) - W(opening point), the dissipation (A76) summed up to each point of the
+    ``timeline``: a cycle closing inside a step is counted at that step (docs/theory/axisymmetric.md
+    (A95))."""
+    a, nu, mu = float(a), float(nu), float(mu)
+    line = timeline(history)
+    energy, total, prev = [], 0.0, State()
+    for _, u, s in line:
+        if u != prev.u:
+            total += _step_dissipation(prev.terms(scale), s.terms(scale), (u - prev.u) * scale, a, nu, mu,
+                                       profile, nodes)
+        energy.append(total)
+        # a wipe point lies on the move into its step: the next sub-move continues from it
+        prev = s
+    return np.array([0.0 if c is None else energy[c[0]] - energy[c[1]] for c in cycle_closures(history)])
 
 
 def dissipated_energy(history, a, nu, mu, profile, *, scale: float = 1.0, nodes: int = 24) -> np.ndarray:

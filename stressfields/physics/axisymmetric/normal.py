@@ -81,7 +81,12 @@ def polar_from_integrals(profile, r, a, nu, G, GE):
     du / (u + s) = (1 - e^{-2t})/2 dt, so the integral is (G - GE)/2."""
     inside = r <= a
     h = np.minimum(r, a)
-    K = 0.5 * profile.normal_force(h) / (r * r) + np.where(inside, 0.5 * (G - GE), 0.0)
+    with _err():
+        force = 0.5 * profile.normal_force(h) / (r * r)
+        # F(r)/r^2 -> 2 B r^m/(m + 2) at the tip; below r ~ 1e-150 both F(r) and r^2 underflow (0/0)
+        m, B = profile.tip_exponent, profile.tip_coefficient
+        force = np.where(r * r > 0.0, force, B * r ** m / (m + 2.0))
+    K = force + np.where(inside, 0.5 * (G - GE), 0.0)
     szz = np.where(inside, -G / math.pi, 0.0)
     q = 1.0 - 2.0 * nu
     srr = szz + q / math.pi * K

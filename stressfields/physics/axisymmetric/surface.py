@@ -41,7 +41,7 @@ from . import normal, tangential
 from .common import arccosh_ratio
 from .integrals import log_integral, tau_integrals, theta_moments
 
-__all__ = ["surface_stress", "surface_dpdz", "stick_radius", "mean_pressure"]
+__all__ = ["surface_stress", "surface_dpdz", "stick_radius", "mean_pressure", "min_pressure"]
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
 #: points per block. The quadrature route's (nodes x points) arrays stay in cache at 4096; the
@@ -425,3 +425,26 @@ def mean_pressure(a, profile):
     a_ = np.asarray(a, dtype=float)
     _check_range("a (contact radius)", a_, np.nextafter(0.0, 1.0), math.inf, "positive and finite (a > 0)")
     return np.asarray(profile.normal_force(a_), dtype=float) / (math.pi * a_ * a_)
+
+
+def min_pressure(profile, a) -> tuple[float, float]:
+    """The smallest contact pressure p(r) / p_m on 0 <= r < a and where it lies, for a scalar
+    contact radius a: a negative value means the profile needs tensile (adhesive) traction to be
+    in contact up to r = a, outside the model (docs/theory/axisymmetric.md (A98)).
+
+    p = -sigma_zz (A14) by the quadrature route (rtol 1e-10) on 1025 equal steps, 16 points per
+    table piece (a tabulated profile's pressure bends at its knots) and points next to the edge,
+    where p ~ g'(a) sqrt(2 (a - r)/a) / pi takes the sign of g'(a) (down to a - r = 1e-12 a)."""
+    a = float(a)
+    grid = [np.linspace(0.0, a, 1025), a * (1.0 - np.logspace(-12, -3, 10))]
+    knots = np.asarray(getattr(profile, "_knots", ()), dtype=float)
+    inner = knots[(knots > 0.0) & (knots < a)]
+    if inner.size:
+        grid.append((inner[:, None] + np.outer(np.diff(np.append(inner, a)), np.linspace(0, 1, 16))).ravel())
+    r = np.unique(np.concatenate(grid))
+    r = r[r < a]
+    method = "closed" if profile.kind == "flat_punch" or profile.has_closed_form else "quadrature"
+    p = -surface_stress(r, 0.0, a, a, 0.3, 0.0, profile, components=("zz",), method=method)["zz"]
+    p = p / mean_pressure(a, profile)
+    i = int(np.argmin(p))
+    return float(p[i]), float(r[i])

@@ -53,6 +53,16 @@ def shear_closed(closed, r, a, c, mu):
     raise ValueError(f"no closed form for {kind!r}")  # pragma: no cover
 
 
+def _cone_e3(A, Cc, a, c, r, outside):
+    """E3 = 3 - A^2 - A C - C^2 with A = sqrt(1 - a^2/r^2) (0 inside), C = sqrt(1 - c^2/r^2):
+    with alpha = a^2/r^2, gamma = c^2/r^2 and 1 - AC = (alpha + gamma - alpha gamma)/(1 + AC),
+    E3 = alpha + gamma + (alpha + gamma - alpha gamma)/(1 + AC) outside (every term positive),
+    3 - C^2 = 2 + gamma inside (docs/theory/axisymmetric.md (A96))."""
+    alpha, gamma = (a / r) ** 2, (c / r) ** 2
+    out = alpha + gamma + (alpha + gamma - alpha * gamma) / (1.0 + A * Cc)
+    return np.where(outside, out, 2.0 + gamma)
+
+
 def inplane_closed(closed, x, y, r, a, c, nu, mu):
     """(sxx, syy, sxy) / E* of the tangential load: cone eq. (40), paraboloid eqs. (15)-(17)
     (F, H by series far outside), flat punch eq. (19).  Zero in the stick zone r <= c."""
@@ -67,11 +77,14 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu):
             Cc = sqrt_diff(r, c) / r
             # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C), docs/theory/axisymmetric.md (A90)
             D1 = np.where(outside, ((a - c) * (a + c) / (r * r)) / (A + Cc), Cc)
-            D3 = -D1 * (A * A + A * Cc + Cc * Cc)          # A^3 - C^3
+            # A^3 - C^3 = -D1 (3 - E3): the brackets of eq. (40) are written with E3 = 3 - A^2 - AC - C^2,
+            # formed without cancellation (A96), so that their O(1) parts cancel exactly (by algebra, not
+            # in rounding: sigma_yy at nu = 1/2, r = 1e6 a was 1.3e-5 relative off) and what remains is O(a^2/r^2)
+            E3 = _cone_e3(A, Cc, a, c, r, outside)
             k = mu * p0
-            sxx = 2.0 * k * X * (D1 * (nu * X2 - (1.0 + nu)) + nu / 3.0 * (4.0 * X2 - 3.0) * D3)
-            syy = -2.0 * nu * k * X * (D1 * X2 + (1.0 - 4.0 * Y2) / 3.0 * D3)
-            sxy = k * Y * (D1 * (2.0 * nu * X2 - 1.0) + 2.0 * nu / 3.0 * (4.0 * X2 - 1.0) * D3)
+            sxx = 2.0 * k * X * D1 * (-(1.0 - 2.0 * nu) - 3.0 * nu * X2 + nu / 3.0 * (4.0 * X2 - 3.0) * E3)
+            syy = -2.0 * nu * k * X * D1 * (3.0 * Y2 + (1.0 - 4.0 * Y2) / 3.0 * E3)
+            sxy = k * Y * D1 * (-(1.0 - 2.0 * nu) - 6.0 * nu * X2 + 2.0 * nu / 3.0 * (4.0 * X2 - 1.0) * E3)
         elif kind == "paraboloid":
             R = closed[1]
             th_a = np.where(r <= a, 0.5 * math.pi, np.arctan2(a, sqrt_diff(r, a)))
@@ -113,7 +126,7 @@ def dpdz_closed(closed, x, r, a, c, nu, mu):
             k = C2 * mu * 0.5 * closed[1]
             # (a/sqrt(a^2-r^2) - c/sqrt(c^2-r^2)) / r^2 = 1/(sa(a+sa)) - 1/(sc(c+sc)), docs/theory/axisymmetric.md (A89)
             v_stick = -k * x * (1.0 / (sa * (a + sa)) - 1.0 / (sc * (c + sc)))
-            v_slip = -k * x * a / (r * r * sa)
+            v_slip = -k * (x / r) * (a / r) / sa   # not x a / (r^2 sa): r^2 underflows at r = 1e-300
             v = np.where(stick, v_stick, np.where(inside, v_slip, 0.0))
         elif kind == "paraboloid":
             k = 2.0 * C2 * mu / (math.pi * closed[1])
@@ -167,7 +180,8 @@ def dpdz_from_integrals(profile, x, r, a, c, nu, mu, H_slip):
     with _err():
         psi_a = 1.0 / (sa * (a + sa))
         psi_c = 1.0 / (sc * (c + sc))
-        first = np.where(stick, -profile.dg(c) * np.where(stick, psi_c, 0.0), profile.dg(r) / (r * r))
-        bracket = first + profile.dg(a) * psi_a - H_slip
-        v = -2.0 * (1.0 + nu) * mu / (3.0 * math.pi) * x * bracket
+        # x times the first term, as (x/r)(g'(r)/r) in the slip zone: x g'(r)/r^2 overflows (r^2 -> 0)
+        # at r = 1e-300 although the value, ~g'(0)/r, is finite
+        first = np.where(stick, -x * profile.dg(c) * np.where(stick, psi_c, 0.0), (x / r) * (profile.dg(r) / r))
+        v = -2.0 * (1.0 + nu) * mu / (3.0 * math.pi) * (first + x * (profile.dg(a) * psi_a - H_slip))
     return _zero_where_x0(x, np.where(r <= a, v, 0.0))
