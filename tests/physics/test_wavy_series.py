@@ -6,6 +6,7 @@ from scipy.integrate import quad
 from scipy.special import eval_legendre, j0
 
 from stressfields.physics import wavy
+from stressfields.physics.wavy import profile, series
 
 F1 = dict(amplitudes=[1.0], wavenumbers=[1])
 F3 = dict(amplitudes=[0.5, 0.01, 0.00075], wavenumbers=[1, 11, 40])
@@ -25,9 +26,17 @@ TABLE_Z = [0.1, 0.5, 1, 2, 5, 10, 20, 50, 100, 200, 400]
 TABLE_K = [3, 4, 5, 7, 10, 14, 21, 40, 68, 123, 229]
 
 
+def _dct_series(w, prof, rtol, max_terms=wavy.DEFAULT_MAX_TERMS):
+    """The periodic Chebyshev series (W9) with DCT coefficients (W7): no longer the route (the closed
+    form (W30) is), kept as an independent check of it; its length law is tested here."""
+    dr, n = profile.harmonic_table(prof["amplitudes"], prof["wavenumbers"])
+    return series.build_table(np.pi * np.atleast_1d(w), [len(n)], dr, n, is_periodic=True, rtol=rtol,
+                              max_terms=max_terms)
+
+
 @pytest.mark.parametrize("n", sorted(TABLE_J))
 def test_periodic_lengths_follow_length_law(n):
-    _, info = wavy.peak_pressure(TABLE_W, **_single(n), periodic=True, rtol=1e-10)
+    info = {"n_terms": (t := _dct_series(TABLE_W, _single(n), 1e-10)).K, "converged": t.converged}
     J = 2 * info["n_terms"] - 1
     # our criterion (l1 tail of the coefficients, (W22)) is slightly stricter than the table's sup norm
     assert np.all(J >= 0.95 * np.array(TABLE_J[n]) - 2)
@@ -45,7 +54,7 @@ def test_periodic_terms_grow_with_ratio_cot_a_over_4():
     """|A_j| ~ rho^-j, rho = cot(a/4): each factor 100 in rtol costs ln(100)/(2 ln rho) more odd terms."""
     for w in [0.5, 0.9]:
         a = np.pi * w
-        K = [wavy.peak_pressure(w, **F1, periodic=True, rtol=r)[1]["n_terms"] for r in (1e-6, 1e-8, 1e-10)]
+        K = [_dct_series(w, F1, r).K[0] for r in (1e-6, 1e-8, 1e-10)]
         step = np.log(100) / (2 * np.log(1 / np.tan(a / 4)))
         np.testing.assert_allclose(np.diff(K), step, atol=1.5)
 
@@ -60,8 +69,9 @@ def test_stable_near_full_contact(w):
     for d, n in zip(amp, wn):
         f = lambda t: (eval_legendre(n - 1, np.cos(t)) + eval_legendre(n, np.cos(t))) / np.cos(t / 2)
         ref += 2 * d / amp[0] * n * n / 4 * quad(f, 0, a, limit=1000, epsabs=1e-13, epsrel=1e-13)[0]
+    assert _dct_series(w, F3, 1e-12).K[0] > 3000   # (W24): J ~ 7929 for n = 40 at 0.99 ...
     p0, info = wavy.peak_pressure(w, **F3, periodic=True)
-    assert info["n_terms"] > 3000          # (W24): J ~ 7929 for n = 40 at 0.99
+    assert info["n_terms"] == 40               # ... the closed form (W30) needs max n_i terms
     assert abs(p0 - ref) <= info["error_estimate"] + 1e-12
     assert abs(p0 - ref) < 1e-11          # rounding-limited there, but still accurate
     p, info = wavy.pressure(np.linspace(0, 1, 101), w, **F3, periodic=True)
@@ -89,8 +99,10 @@ def test_unreachable_tolerance_is_flagged_not_hidden():
     w = 0.99
     a = np.pi * w
     exact = 2 * np.cos(t * a / 2) * np.sqrt(np.sin(a * (1 - t) / 2) * np.sin(a * (1 + t) / 2))
-    # length capped far below the 1500-odd terms needed
-    p, info = wavy.pressure(t, w, **F1, periodic=True, max_terms=256)
+    # the Chebyshev series (W9) with its length capped far below the 1500-odd terms needed
+    tab = _dct_series(w, F1, 1e-12, max_terms=256)
+    info = {"converged": tab.converged, "n_terms": tab.K, "error_estimate": tab.err}
+    p = series.sine_sum(tab, np.zeros(t.shape, dtype=int), wavy.periodic.theta_of_t(t, a))
     assert not info["converged"].any()
     assert info["n_terms"].max() == 256
     err = np.max(np.abs(p - exact))

@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import nonperiodic, periodic
+from . import periodic as _periodic
 from . import profile as _profile
 from . import series, validity
 
@@ -53,8 +54,10 @@ class _Context:
         self.ua, self.uN = ua, uN
         self.row = np.asarray(ia).reshape(self.a_in.shape) * len(uN) + np.asarray(iN).reshape(self.N_in.shape)
         self.table = None
-        if build:
-            self.table = series.build_table(ua, uN, self.dr, self.n, is_periodic=self.periodic,
+        if build and self.periodic:   # closed form (W30): no series, converges for every 2a/lambda_1
+            self.table = periodic.build_table(ua, uN, self.dr, self.n, rtol=rtol)
+        elif build:
+            self.table = series.build_table(ua, uN, self.dr, self.n, is_periodic=False,
                                             rtol=rtol, max_terms=max_terms, weighted=weighted)
         self._outside = None
 
@@ -97,21 +100,24 @@ def pressure(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic:
     (docs/theory/wavy.md (W26)).
     """
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
-    t = np.abs(np.asarray(x_over_a, dtype=float))
-    shape = np.broadcast(t, c.row).shape
-    t, row, a = np.broadcast_arrays(t, c.row, c.a_in)
+    shape, t, row, a = _reduced(c, x_over_a)      # periodic: folded into one period (|x| <= pi)
     p = np.zeros(shape)
     inside = t <= 1.0
-    if not (substitute and periodic):
+    if not periodic:
         p[inside] = series.sine_sum(c.table, row[inside], c.mod.theta_of_t(t[inside], a[inside]))
+        return p, c.info(shape, row)
+    if not substitute:
+        p[inside] = _periodic.closed_pressure(c.table, row[inside], t[inside])
         return p, c.info(shape, row)
     many = np.bincount(np.ravel(row[inside]), minlength=c.table.K.size) >= SUBSTITUTE_MIN_POINTS
     use, err = _substitution(c, many, amplitudes, wavenumbers, rtol, max_terms)
     sub = np.broadcast_to(use[c.row], shape)
-    for ctx, part in ((c, inside & ~sub), (_ctx(two_a_over_lambda1, amplitudes, wavenumbers, False, n_harmonics,
-                                                 rtol, max_terms), inside & sub)):
-        if part.any():
-            p[part] = series.sine_sum(ctx.table, row[part], ctx.mod.theta_of_t(t[part], a[part]))
+    own = inside & ~sub
+    p[own] = _periodic.closed_pressure(c.table, row[own], t[own])
+    part = inside & sub
+    if part.any():
+        ctx = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, False, n_harmonics, rtol, max_terms)
+        p[part] = series.sine_sum(ctx.table, row[part], ctx.mod.theta_of_t(t[part], a[part]))
     info = c.info(shape, row, err[row])
     info["substituted"] = sub.copy()
     return p, info
@@ -197,12 +203,14 @@ def pressure_shape(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, per
         raise ValueError("pressure_shape is defined for |x_over_a| <= 1 only")
     shape = np.broadcast(t, c.row).shape
     t, row, a = (np.ravel(v) for v in np.broadcast_arrays(t, c.row, c.a_in))
+    if c.periodic:
+        phi = _periodic.closed_shape(c.table, row, t).reshape(shape)
+        row = row.reshape(shape)
+        return phi, c.info(shape, row, c.table.err_shape[row])
     th = c.mod.theta_of_t(t, a)
     phi = (series.sine_sum(c.table, row, th, over_sin=True) * c.mod.shape_ratio(t, a)).reshape(shape)
     row = row.reshape(shape)
-    a = a.reshape(shape)
-    ratio_edge = c.mod.shape_ratio(np.ones_like(a), a)
-    return phi, c.info(shape, row, c.table.err_shape[row] * ratio_edge)
+    return phi, c.info(shape, row, c.table.err_shape[row])
 
 
 def mean_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None):
@@ -223,6 +231,8 @@ def peak_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool
     docs/theory/wavy.md (W13).  Returns (value, info)."""
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     t = c.table
+    if c.periodic:
+        return _periodic.closed_peak(t, c.row), c.info(c.row.shape)
     sign = np.where(np.arange(t.D.shape[1]) % 2 == 0, 1.0, -1.0)
     p0 = (t.D @ sign)[c.row]
     return p0, c.info(p0.shape)
@@ -264,8 +274,10 @@ def _reduced(c, x_over_a):
     shape = np.broadcast(t, c.row).shape
     t, row, a = (np.array(v) for v in np.broadcast_arrays(t, c.row, c.a_in))
     if c.periodic:
-        x = np.abs(np.remainder(t * a + np.pi, 2.0 * np.pi) - np.pi)
-        t = x / a
+        # only points beyond half a period move: folding in x (t a + pi - pi) would round t by
+        # eps pi/a, i.e. 1e-7 p* next to the edge of a contact with 2a/lambda_1 = 0.01 (measured)
+        k = np.round(t * a / (2.0 * np.pi))
+        t = np.where(t * a > np.pi, np.abs(t - k * (2.0 * np.pi / a)), t)
     return shape, t, row, a
 
 
@@ -346,12 +358,14 @@ def contact_validity(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
     t_phi, v_phi = validity.extreme_over_contact(c.table, c.mod, rows, shape=True)
     outside = c.outside(rows) if c.periodic else None
     t_gap, v_gap = validity.min_gap_outside(c.table, outside, rows, c.dr, c.n)
-    a_r = c.table.a[rows]
-    edge = (c.table.D[rows] @ (2.0 * np.arange(c.table.D.shape[1]) + 1.0)) * c.mod.shape_ratio(np.ones_like(a_r), a_r)
+    if c.periodic:
+        edge = _periodic.closed_shape(c.table, rows, np.ones(rows.shape))
+    else:
+        edge = c.table.D[rows] @ (2.0 * np.arange(c.table.D.shape[1]) + 1.0)
     pos = np.searchsorted(rows, c.row)
     take = lambda v: v[pos]
     p_ok, g_ok = v_phi >= -atol, v_gap >= -atol
-    inf = c.info(c.row.shape, err=c.table.err_shape[c.row] * c.mod.shape_ratio(np.ones_like(c.a_in), c.a_in))
+    inf = c.info(c.row.shape, err=c.table.err_shape[c.row])
     return {"ok": take(p_ok & g_ok), "pressure_ok": take(p_ok), "gap_ok": take(g_ok),
             "min_phi_over_pstar": take(v_phi), "x_of_min_phi_over_a": take(t_phi),
             "min_gap_over_Delta1": take(v_gap), "x_of_min_gap_over_a": take(t_gap),

@@ -15,10 +15,9 @@ from __future__ import annotations
 
 import numpy as np
 import scipy.fft
-from scipy.special import eval_legendre
+from scipy.special import eval_jacobi, eval_legendre
 
 from . import series
-from .profile import gap_slope
 
 # Gauss-Legendre rule used on every panel of the outside-contact integrals
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(16)
@@ -78,17 +77,34 @@ def shape_ratio(t, a):
 
 
 def mean_pressure(a, delta_ratio, n, N):
-    """p_inf/p* = (1/2) sum_{i<N} (Delta_i/Delta_1) n_i [P_{n_i-1}(cos a) - P_{n_i}(cos a)].
+    """p_inf/p* = (1/2) sum_{i<N} (Delta_i/Delta_1) n_i [P_{n_i-1}(cos a) - P_{n_i}(cos a)]
+    = sum_i (Delta_i/Delta_1) n_i sin^2(a/2) P_{n_i-1}^(1,0)(cos a), the second form (W34) evaluated.
 
     Closed form of eq. (6), docs/theory/wavy.md (W11) (not in the paper, which integrates the
     series numerically).  n = 1 gives Westergaard's sin^2(a/2).
     """
-    c = np.cos(a)
+    u = np.sin(0.5 * np.asarray(a, dtype=float)) ** 2
     out = np.zeros(np.broadcast(a, N).shape)
     for i in range(len(n)):
-        term = 0.5 * delta_ratio[i] * n[i] * (eval_legendre(n[i] - 1, c) - eval_legendre(n[i], c))
+        term = delta_ratio[i] * n[i] * u * _jacobi10(int(n[i]) - 1, u)
         out += np.where(N > i, term, 0.0)
     return out
+
+
+def _jacobi10(m, u):
+    """P_m^(1,0)(1 - 2u), so that P_m - P_{m+1} = 2u P_m^(1,0) (W34) without the cancellation of the
+    difference as a -> 0 (relative error 1 at 2a/lambda_1 = 1e-9 in the Legendre form).
+
+    Where (m+1)^2 u <= 1/2: (m+1) 2F1(-m, m+2; 2; u), terms shrinking by at least 1/((k+1)(k+2)),
+    so no cancellation; elsewhere scipy's eval_jacobi (the value is then >= O(1/m))."""
+    u = np.asarray(u, dtype=float)
+    small = (m + 1) ** 2 * u <= 0.5
+    term = np.full(u.shape, float(m + 1))
+    total = term.copy()
+    for k in range(min(m, 40)):   # ratio <= 0.5/((k+1)(k+2)): 40 terms reach far below eps
+        term = term * -(m - k) * (m + 2 + k) * u / ((k + 1) * (k + 2))
+        total = total + term
+    return np.where(small, total, eval_jacobi(m, 1, 0, 1.0 - 2.0 * u))
 
 
 def approach(a, delta_ratio, n, N):
@@ -124,9 +140,9 @@ class OutsideTable:
     """gap(x)/Delta_1 = int_a^x [g'(y) + u_z'(y)] dy / Delta_1 for a < x <= pi, every table row,
     docs/theory/wavy.md (W18).
 
-    Outside the contact u_z'/Delta_1 = -sum_m D_m w^(2m+1) (the Cauchy transform of
-    sqrt(1-s^2) U_{j-1}(s) is w^j off the cut; inside it is T_j, which gives back -g').
-    The integral has no closed form in this kernel, so it is done numerically in
+    Outside the contact g' + u_z' = S(x) Q(x), the closed form (W33) (the series form
+    -sum_m D_m w^(2m+1) of (W18) converges slowly as 2a/lambda_1 -> 1).
+    The integral is done numerically in
     tau = sqrt((x-a)/(pi-a)) (removes the (x-a)^(1/2) edge behaviour) on panels fine enough for
     the profile's shortest wave, for w(x) and for the edge; 16-point Gauss-Legendre per panel.
     Cumulative panel sums make later evaluations cost one panel each.
@@ -152,7 +168,7 @@ class OutsideTable:
     def _integrand(self, row, tau):
         a = self.table.a[row]
         x = a + (np.pi - a) * tau * tau
-        slope = gap_slope(x, self.dr, self.n, self.table.N[row]) - series.power_sum(self.table, row, _w_of_x(x, a))
+        slope = closed_gap_slope(self.table, row, x)
         return slope * 2.0 * (np.pi - a) * tau
 
     def _integrate(self, row, lo, hi):
@@ -171,3 +187,84 @@ class OutsideTable:
         k = np.clip(k, 0, P - 2)
         lo = self.B[k_row, k]
         return self.cum[k_row, k] + self._integrate(row, lo, tau)
+
+
+# ------------------------------------------------------------- closed form, docs/theory/wavy.md (W30)
+
+#: odd Chebyshev terms used only for the magnitude scale of a contact (W32); a lower bound of the
+#: l2 norm, exact to rounding for 2a/lambda_1 <= 0.5 (where the substitution test applies)
+_MAGNITUDE_TERMS = 64
+
+
+def closed_coefficients(a, delta_ratio, n, N):
+    """B_j (rows of a/N, j < max n_i): p/p* = R(x) sum_j B_j cos((j + 1/2) x),
+    B_j = sum_{i<N, n_i>j} 2 (Delta_i/Delta_1) n_i P_{n_i-1-j}(cos a), docs/theory/wavy.md (W30)."""
+    a, N = np.asarray(a, dtype=float), np.asarray(N, dtype=int)
+    top = int(np.max(n[: int(np.max(N))]))
+    P = eval_legendre(np.arange(top)[None, :], np.cos(a)[:, None])
+    B = np.zeros((a.size, top))
+    for i in range(len(n)):
+        ni = int(n[i])
+        B[:, :ni] += np.where(N[:, None] > i, 2.0 * delta_ratio[i] * ni * P[:, ni - 1 - np.arange(ni)], 0.0)
+    return B
+
+
+def build_table(a_values, N_values, delta_ratio, n, *, rtol):
+    """The periodic route as a SeriesTable: D holds B_j of (W30), K the number of terms, err the
+    rounding bound (W31), scale the magnitude scale (W32); converged = err <= rtol (p* units)."""
+    if not rtol > 0:
+        raise ValueError("rtol must be positive")
+    a = np.repeat(np.asarray(a_values, dtype=float), len(N_values))
+    N = np.tile(np.asarray(N_values, dtype=int), len(a_values))
+    B = closed_coefficients(a, delta_ratio, n, N)
+    K = np.array([int(np.max(n[:k])) for k in N])
+    j = np.arange(B.shape[1]) + 0.5
+    # (W31): B_j from Legendre values good to ~2 eps each, cos((j+1/2)x) with argument rounding
+    # (j+1/2) pi eps, summation eps per term; measured max |error| / this bound <= 0.05 (tests)
+    weight = np.sum(np.abs(2.0 * delta_ratio * n)[None, :] * (N[:, None] > np.arange(len(n))[None, :]), axis=1)
+    errQ = series.EPS * (np.abs(B) @ (4.0 + np.pi * j) + 4.0 * K * weight)
+    err = np.sin(0.5 * a) * errQ                       # R <= sin(a/2)
+    err_shape = 0.5 * a * errQ                        # (a/2) sqrt(sinc sinc) <= a/2
+    C = coefficients(np.asarray(a_values, dtype=float), n, _MAGNITUDE_TERMS)
+    w = 2.0 * delta_ratio * n
+    norm = np.cumsum(np.abs(w)[None, :] * np.sqrt(np.sum(C * C, axis=-1)), axis=1)[:, np.asarray(N_values) - 1]
+    return series.SeriesTable(periodic=True, a=a, N=N, D=B, K=K, err=err, err_shape=err_shape,
+                              converged=err <= rtol, scale=norm.reshape(-1))
+
+
+def q_sum(table, row, x):
+    """Q(x) = sum_j B_j cos((j + 1/2) x) for table rows ``row`` (W30)."""
+    row, x = np.broadcast_arrays(np.asarray(row), np.asarray(x, dtype=float))
+    out = np.zeros(x.shape)
+    for j in range(table.D.shape[1]):
+        out += table.D[row, j] * np.cos((j + 0.5) * x)
+    return out
+
+
+def closed_pressure(table, row, t):
+    """p/p* = R Q at |x|/a = t in [0, 1]; R = sqrt(sin(a(1-t)/2) sin(a(1+t)/2)) without
+    cancellation at the edge, docs/theory/wavy.md (W30)."""
+    a = table.a[row]
+    R = np.sqrt(np.sin(0.5 * a * (1.0 - t)) * np.sin(0.5 * a * (1.0 + t)))
+    return R * q_sum(table, row, a * t)
+
+
+def closed_shape(table, row, t):
+    """phi = p/sqrt(1 - t^2) / p* = (a/2) sqrt(sinc(a(1-t)/2) sinc(a(1+t)/2)) Q(a t), finite at the
+    edge, where it is the edge coefficient (1/2) sqrt(a sin a) Q(a), docs/theory/wavy.md (W30)."""
+    a = table.a[row]
+    sinc = lambda u: np.sinc(u / np.pi)
+    return 0.5 * a * np.sqrt(sinc(0.5 * a * (1.0 - t)) * sinc(0.5 * a * (1.0 + t))) * q_sum(table, row, a * t)
+
+
+def closed_peak(table, rows):
+    """p(0)/p* = sin(a/2) sum_j B_j, docs/theory/wavy.md (W30)."""
+    return np.sin(0.5 * table.a[rows]) * table.D[rows].sum(axis=-1)
+
+
+def closed_gap_slope(table, row, x):
+    """gap'(x)/Delta_1 = S(x) Q(x) for a <= x <= pi, S = sqrt(sin((x-a)/2) sin((x+a)/2)): the
+    analytic continuation of (W30) off the contact, docs/theory/wavy.md (W33)."""
+    a = table.a[row]
+    S = np.sqrt(np.maximum(np.sin(0.5 * (x - a)) * np.sin(0.5 * (x + a)), 0.0))
+    return S * q_sum(table, row, x)

@@ -32,7 +32,8 @@ SERIES_METHODS: tuple[str, ...] = ("auto", "series")
 #: every method the family offers, in the order a recipe lists them
 METHODS: tuple[str, ...] = (*SERIES_METHODS, *APPROXIMATE)
 
-_SERIES_ROUTE = "Chebyshev series (periodic, eq. 10-12) or Bessel series (non-periodic, eq. 14), length from rtol"
+_SERIES_ROUTE = ("closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or Bessel series "
+                 "(non-periodic, eq. 14), length from rtol")
 _AUTO_ROUTE = ("; auto: pressure of a narrow periodic contact by the non-periodic series where the periodic "
                "correction is below rtol (validity = 3)")
 
@@ -54,7 +55,9 @@ def resolve(method: str, rtol: float) -> tuple[str, str]:
         return (f"the paper's approximate {method.removeprefix('approximate_')} (inaccurate; for comparison only)",
                 "not controlled: see the exact series")
     return (_SERIES_ROUTE + (_AUTO_ROUTE if substitutes(method) else ""),
-            f"series error below rtol = {rtol:g}; per case in error_estimate, flagged in converged")
+            f"periodic: rounding bound (W31) below rtol = {rtol:g} times p*; non-periodic: series error below "
+            f"rtol = {rtol:g} times the contact's coefficient scale sum_i |w_i| ||C_i||_2; per case in "
+            "error_estimate, flagged in converged")
 
 
 def _known(method: str) -> str:

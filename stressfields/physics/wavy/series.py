@@ -17,7 +17,7 @@ Truncation.  For each contact angle the coefficients are computed on a window of
 (L from the laws of docs/theory/wavy.md (W24)), and the number of terms K kept is the smallest with
 
     tail(K) = sum_{m>=K} sum_i |w_i C_im|  (+ geometric extrapolation beyond the window)
-            <= rtol * sum_i w_i ||C_i||_2 .
+            <= rtol * sum_i |w_i| ||C_i||_2  (the contact's magnitude scale, (W22)).
 
 tail(K) bounds |p - p_K|/p* pointwise (|sin| <= 1); plus rounding terms (coefficient noise,
 summation) it is returned as the error estimate, and ``converged`` means the estimate is
@@ -49,8 +49,8 @@ class SeriesTable:
     K: np.ndarray          # (R,) terms kept
     err: np.ndarray        # (R,) bound of |p - p_K| / p*
     err_shape: np.ndarray  # (R,) bound of the error of p/sin(theta) (weights 2m+1)
-    converged: np.ndarray  # (R,) tail <= rtol * scale reached
-    scale: np.ndarray      # (R,) sum_i w_i ||C_i||_2, the size rtol refers to
+    converged: np.ndarray  # (R,) error estimate <= rtol * scale reached
+    scale: np.ndarray      # (R,) sum_i |w_i| ||C_i||_2, the size rtol refers to (W22)
 
 
 def _module(is_periodic):

@@ -87,9 +87,26 @@ def _grid_values(table, rows, M, Kb, *, shape):
     return theta, out
 
 
+def _extreme_closed(table, rows, shape):
+    """extreme_over_contact for the periodic closed form (W30), in theta with t = cos(theta) (which
+    resolves the square-root edge): >= 16 grid points per harmonic of Q, then golden section."""
+    from . import periodic
+
+    def f(k, theta):
+        t = np.cos(theta)
+        return (periodic.closed_shape(table, rows[k], t) if shape
+                else -periodic.closed_pressure(table, rows[k], t))
+
+    G = 16 * int(np.max(table.K[rows])) + 65
+    th, v = minimize_rows(f, np.zeros(rows.size), np.full(rows.size, 0.5 * np.pi), G)
+    return np.clip(np.cos(th), 0.0, 1.0), (v if shape else -v)
+
+
 def extreme_over_contact(table, mod, rows, *, shape):
     """Per row: (t, value) of min phi (shape=True) or of max p (shape=False), t = |x|/a in [0, 1]."""
     rows = np.asarray(rows)
+    if table.periodic:
+        return _extreme_closed(table, rows, shape)
     t_out, v_out = np.empty(rows.size), np.empty(rows.size)
     for sel, Kb in _by_K(table, rows):
         r = rows[sel]
