@@ -2,7 +2,11 @@
 from __future__ import annotations
 
 import argparse
+import logging
+import os
+import signal
 import sys
+import threading
 from pathlib import Path
 
 from . import __version__
@@ -10,28 +14,68 @@ from .api import describe, scenarios
 from .build import build, estimate
 from .errors import OutputError
 from .recipe import RecipeError, load
-from .writers import check_target, export, format_for, write
+from .writers import check_name, check_target, export, format_for, write
 
 LOCAL_SCHEDULERS = ("threads", "synchronous", "processes")
 #: sweeps larger than this are written in resumable parts
 PARTS_ABOVE = 50_000_000
 
 
+#: signals that end a run like Ctrl-C (schedulers, `timeout` and `docker stop` send TERM; a closed
+#: terminal sends HUP), with the exit code of a process killed by them (128 + number)
+SIGNALS = {signal.SIGTERM: "SIGTERM", signal.SIGHUP: "SIGHUP"}
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = _parser()
     args = parser.parse_args(argv)
+    previous = _catch_signals()
     try:
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()      # a closed pipe must show here, not at the interpreter's exit
+        return code
     except (RecipeError, OutputError, UsageError) as exc:
         print(f"error: {exc}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("interrupted; no partial output was left", file=sys.stderr)
         return 130
+    except Terminated as exc:
+        print(f"terminated by {SIGNALS[exc.signum]}; no partial output was left", file=sys.stderr)
+        return 128 + exc.signum
+    except BrokenPipeError:
+        # the reader went away (`stressfields describe X | head -1`): say so once, and keep the
+        # interpreter's final flush of stdout from raising again
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        print("error: output pipe closed before everything was written", file=sys.stderr)
+        return 2
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
 
 
 class UsageError(ValueError):
     pass
+
+
+class Terminated(BaseException):
+    """Raised in the main thread by SIGTERM/SIGHUP, so the writers remove their temporaries as for Ctrl-C."""
+
+    def __init__(self, signum: int):
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _catch_signals() -> dict:
+    if threading.current_thread() is not threading.main_thread():
+        return {}           # signal handlers can only be set from the main thread (an embedding program's)
+    return {signum: signal.signal(signum, _terminate) for signum in SIGNALS}
+
+
+def _terminate(signum, frame):
+    for other in SIGNALS:   # a second signal must not interrupt the clean-up of the first
+        signal.signal(other, signal.SIG_IGN)
+    raise Terminated(signum)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -98,6 +142,8 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _export(args) -> int:
+    if not args.store.exists():
+        raise UsageError(f"{args.store}: no such file or store")
     export(args.store, args.output, overwrite=args.overwrite)
     return 0
 
@@ -111,10 +157,12 @@ def _hash(args) -> int:
             raise UsageError(f"{path}: no such file")
         try:
             digest, stored = file_hash(path)
-        except (OSError, ValueError) as exc:
-            raise UsageError(f"{path}: not a readable NetCDF file ({exc})") from None
+        except Exception as exc:      # any reader's failure on a damaged or foreign file
+            raise UsageError(f"{path}: not a readable NetCDF file or Zarr store "
+                             f"({type(exc).__name__}: {str(exc)[:200]})") from None
         if stored is None:
-            print(f"{path}: {digest} (no stored hash to check)")
+            print(f"{path}: {digest} unverified (no stored hash to check)")
+            bad += 1
         elif stored == digest:
             print(f"{path}: {digest} ok")
         else:
@@ -140,6 +188,9 @@ def _run(args) -> int:
     if args.output and len(args.recipes) > 1:
         raise UsageError("-o/--output takes one recipe; use --out-dir for several")
     chunks = _parse_chunks(args.chunks)
+    if args.plot and not args.dry_run:
+        _check_plotting()
+    out_dir_ready = args.output is not None or _check_out_dir(args.out_dir)
     jobs = []
     for path in args.recipes:      # validate everything before computing anything
         recipe = load(path)
@@ -148,8 +199,12 @@ def _run(args) -> int:
             raise UsageError(f"--chunks: {', '.join(sorted(bad))} is not a swept dimension of {path} "
                              f"(swept: {', '.join(recipe.swept) or 'none'})")
         target = args.output or args.out_dir / f"{path.stem}.nc"
-        if not args.dry_run and (args.output or args.out_dir.is_dir()):
-            check_target(target, overwrite=args.overwrite, resume=args.resume)
+        if args.dry_run:
+            pass
+        elif out_dir_ready:
+            check_target(target, overwrite=args.overwrite, resume=args.resume, parts=args.parts)
+        else:
+            check_name(target, _existing_ancestor(args.out_dir))
         jobs.append((path, recipe, target))
     if args.dry_run:
         for path, recipe, target in jobs:
@@ -163,7 +218,10 @@ def _run(args) -> int:
     scheduler, client = _scheduler(args.scheduler)
     try:
         if not args.output:
-            args.out_dir.mkdir(parents=True, exist_ok=True)
+            try:
+                args.out_dir.mkdir(parents=True, exist_ok=True)
+            except OSError as exc:
+                raise OutputError(f"--out-dir {args.out_dir}: {exc.strerror or exc}") from None
         for path, recipe, target in jobs:
             ds = build(recipe, chunks)
             if not args.quiet:
@@ -172,8 +230,15 @@ def _run(args) -> int:
                       f"{len(ds.data_vars)} variables]", file=sys.stderr)
             show = not args.quiet and client is None
             parts = args.parts or (recipe.size > PARTS_ABOVE and format_for(target).resumable)
-            write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=show,
-                  scheduler=scheduler)
+            try:
+                write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=show,
+                      scheduler=scheduler)
+            except Exception as exc:
+                if client is None or not _cluster_failure(exc, client):
+                    raise
+                reason = " ".join(str(exc).split())[:200]
+                raise OutputError(f"the dask scheduler {args.scheduler} was lost during the run "
+                                  f"({type(exc).__name__}: {reason}); {target} was not written") from None
             if args.plot:
                 from .plot import quicklook
 
@@ -182,8 +247,53 @@ def _run(args) -> int:
                     print(f"  quick look: {png}", file=sys.stderr)
     finally:
         if client is not None:
-            client.close()
+            _close(client)
     return 0
+
+
+def _check_plotting() -> None:
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        raise UsageError("--plot needs matplotlib: pip install 'stressfields[plot]'") from None
+
+
+def _check_out_dir(out_dir: Path) -> bool:
+    """Whether --out-dir exists (then each target is checked in it); if it does not, that it can be
+    created: its nearest existing ancestor is a writable directory. Nothing is created here."""
+    if out_dir.is_dir():
+        return True
+    if os.path.lexists(out_dir):
+        raise UsageError(f"--out-dir {out_dir} is not a directory")
+    ancestor = _existing_ancestor(out_dir)
+    if not ancestor.is_dir():
+        raise UsageError(f"--out-dir {out_dir}: {ancestor} is not a directory")
+    if not os.access(ancestor, os.W_OK | os.X_OK):
+        raise UsageError(f"--out-dir {out_dir}: cannot create it, {ancestor} is not writable "
+                         "(read-only or no permission)")
+    return False
+
+
+def _existing_ancestor(path: Path) -> Path:
+    path = Path(os.path.abspath(path))
+    while not os.path.lexists(path) and path != path.parent:
+        path = path.parent
+    return path
+
+
+def _cluster_failure(exc: Exception, client) -> bool:
+    """A lost scheduler or connection, as opposed to an error of the computation itself."""
+    from concurrent.futures import CancelledError
+
+    return (isinstance(exc, (OSError, CancelledError, TimeoutError)) or type(exc).__module__.startswith("distributed")
+            or getattr(client, "status", "running") != "running")
+
+
+def _close(client) -> None:
+    try:
+        client.close(timeout=5)
+    except Exception:       # a scheduler that died is already gone: nothing to release
+        pass
 
 
 def _scheduler(name: str):
@@ -194,10 +304,22 @@ def _scheduler(name: str):
     except ImportError:
         raise UsageError(f"--scheduler {name}: a cluster address needs dask.distributed "
                          "(pip install 'stressfields[cluster]')") from None
+    from distributed.client import _del_global_client, _get_global_client
+
+    before = _get_global_client()
     try:
         client = Client(name, timeout="10s")
-    except (OSError, ValueError) as exc:
-        raise UsageError(f"--scheduler {name}: cannot connect ({exc})") from None
+        # a lost scheduler is reported in one line by `_run`; distributed's own log of the reconnection
+        # attempts would add a traceback of some 40 lines
+        for logger in ["distributed", *(n for n in logging.root.manager.loggerDict if n.startswith("distributed."))]:
+            logging.getLogger(logger).setLevel(logging.CRITICAL)
+    except Exception as exc:       # refused, timed out, or something that is not a dask scheduler
+        # a half-made client stays the process-wide default and every later computation would go to it
+        stuck = _get_global_client()
+        if stuck is not None and stuck is not before:
+            _del_global_client(stuck)
+            _close(stuck)
+        raise UsageError(f"--scheduler {name}: cannot connect ({type(exc).__name__}: {str(exc)[:200]})") from None
     return client, client
 
 

@@ -67,6 +67,25 @@ def file_hash(path: str | Path) -> tuple[str, str | None]:
         return content_hash(ds), ds.attrs.get(ATTR)
 
 
+def verify(path: str | Path) -> str:
+    """The content hash of a written file or store after checking it against the stored one. Raises
+    OutputError naming the problem when the input cannot be read, carries no hash (a run that did not
+    finish, or a file not written here), or its content changed (a flipped bit, a lost chunk)."""
+    from .errors import OutputError
+
+    try:
+        digest, stored = file_hash(path)
+    except Exception as exc:       # any reader's failure on damaged input: HDF5, zarr, codecs
+        raise OutputError(f"{path}: not a readable NetCDF file or Zarr store "
+                          f"({type(exc).__name__}: {str(exc)[:200]})") from None
+    if stored is None:
+        raise OutputError(f"{path}: no stored content hash (unfinished, or not written by stressfields); "
+                          "refusing to use it")
+    if stored != digest:
+        raise OutputError(f"{path}: damaged: its content hash {digest} differs from the stored {stored}")
+    return digest
+
+
 def stamp(path: str | Path) -> str:
     """Compute the content hash of a written NetCDF file and store it as a global attribute."""
     import netCDF4

@@ -1,8 +1,20 @@
-"""NetCDF output: written beside the target under a temporary name, renamed when complete."""
+"""NetCDF output: written beside the target under a temporary name, published when complete.
+
+Files beside a target are named after it and after the process that made them, so a later run can
+tell its own from those of a run that is gone (`clean_stale`):
+
+    .NAME.HOST-PID.RANDOM.tmp        a NetCDF file being written
+    .NAME.HOST-PID.RANDOM.partial    a Zarr store being written (see `zarrstore`)
+"""
 from __future__ import annotations
 
+import hashlib
 import os
+import re
+import shutil
+import socket
 import tempfile
+from concurrent.futures import ThreadPoolExecutor
 from contextlib import nullcontext
 from pathlib import Path
 
@@ -11,36 +23,125 @@ import xarray as xr
 from .errors import OutputError
 from .hashing import stamp
 
+#: host and process that own a temporary: a short hash of the host name (a shared disk may be written
+#: from several machines, whose process ids mean nothing here) and the process id
+OWNER = f"{hashlib.sha256(socket.gethostname().encode()).hexdigest()[:6]}-{os.getpid()}"
+#: bytes a temporary's name adds to the target's (the longest process id of Linux, 4194304)
+TEMP_OVERHEAD = len(".." + OWNER.split("-")[0] + "-4194304" + ".12345678" + ".partial")
 
 
+def temporary(target: Path, suffix: str) -> Path:
+    """A new, unique, empty temporary beside ``target``: a file (``.tmp``) or a directory (``.partial``)."""
+    parent = target.parent if str(target.parent) else Path(".")
+    prefix = f".{target.name}.{OWNER}."
+    try:
+        if suffix == ".partial":
+            return Path(tempfile.mkdtemp(prefix=prefix, suffix=suffix, dir=parent))
+        fd, tmp = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=parent)
+    except OSError as exc:
+        raise OutputError(f"cannot write {target}: {exc.strerror or exc}") from None
+    os.close(fd)
+    return Path(tmp)
 
-def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, fill=None) -> Path:
+
+def clean_stale(target: Path) -> list[Path]:
+    """Remove the temporaries of ``target`` left by killed runs of this host (their process is gone);
+    those of live runs, or of other hosts, are kept. Returns what was removed."""
+    parent = target.parent if str(target.parent) else Path(".")
+    pattern = re.compile(rf"^\.{re.escape(target.name)}\.([0-9a-f]{{6}})-(\d+)\.[^./]+\.(tmp|partial)$")
+    removed = []
+    try:
+        names = os.listdir(parent)
+    except OSError:
+        return removed
+    for name in names:
+        m = pattern.match(name)
+        if m and f"{m[1]}-{m[2]}" != OWNER and not owner_alive(f"{m[1]}-{m[2]}"):
+            path = parent / name
+            shutil.rmtree(path, ignore_errors=True) if path.is_dir() else _remove(str(path))
+            removed.append(path)
+    return removed
+
+
+def owner_alive(owner: str) -> bool:
+    """Whether the process ``HOST-PID`` may still run (always True for another host)."""
+    host, _, pid = owner.partition("-")
+    if host != OWNER.split("-")[0] or not pid.isdigit():
+        return True
+    try:
+        os.kill(int(pid), 0)
+    except ProcessLookupError:
+        return False
+    except OSError:         # exists, owned by someone else
+        return True
+    return True
+
+
+def publish(tmp: Path, target: Path, overwrite: bool) -> None:
+    """Give the complete file ``tmp`` its final name. Without ``overwrite`` the target is claimed in one
+    atomic step (a hard link fails if the name exists), so of two runs onto one name exactly one wins."""
+    if overwrite:
+        os.replace(tmp, target)
+        return
+    try:
+        os.link(tmp, target, follow_symlinks=False)
+    except FileExistsError:
+        raise OutputError(f"{target} was created by another run while this one was writing; refusing to "
+                          "overwrite it (use --overwrite)") from None
+    except OSError:         # no hard links on this file system: the run lock (`writers`) guards the name
+        if os.path.lexists(target):
+            raise OutputError(f"{target} exists; refusing to overwrite it (use --overwrite)") from None
+        os.rename(tmp, target)
+        return
+    os.unlink(tmp)
+
+
+def compute(delayed, *, progress: bool = False, scheduler=None) -> None:
+    """``delayed.compute`` that, on the local threads, returns only when no task is still running: a
+    failed or interrupted write must not have a thread recreate the temporary after it was removed."""
+    from dask.base import get_scheduler
+    from dask.threaded import get as threaded_get
+
+    with progress_bar(progress):
+        if scheduler not in (None, "threads") or (scheduler is None and get_scheduler() not in (None, threaded_get)):
+            delayed.compute(scheduler=scheduler)
+            return
+        workers = os.cpu_count() or 1
+        pool = ThreadPoolExecutor(workers)
+        try:
+            delayed.compute(scheduler="threads", pool=pool, num_workers=workers)
+        finally:
+            pool.shutdown(wait=True, cancel_futures=True)
+
+
+def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, overwrite: bool = False,
+          fill=None) -> Path:
     """Compute ``ds`` chunk by chunk and write it to ``target`` atomically.
 
     The file appears under its final name only once it is complete, with its content hash (see
-    `hashing`) stored as a global attribute; the caller has checked the target (`writers.check_target`).
+    `hashing`) stored as a global attribute; the caller has checked the target (`writers.check_target`);
+    without ``overwrite`` a file another run published meanwhile is never replaced (`publish`).
     ``scheduler`` is passed to dask (None: the local threads). ``fill(tmp_path)``, if given, writes
     the values instead of computing ``ds`` (used to join finished parts).
     """
     target = Path(target)
     parent = target.parent if str(target.parent) else Path(".")
-    try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=parent)
-    except OSError as exc:
-        raise OutputError(f"cannot write {target}: {exc.strerror or exc}") from None
-    os.close(fd)
+    clean_stale(target)
+    tmp = str(temporary(target, ".tmp"))
     try:
         delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds), compute=False)
         if fill is None:
-            with progress_bar(progress):
-                delayed.compute(scheduler=scheduler)
+            compute(delayed, progress=progress, scheduler=scheduler)
         else:
             fill(tmp)   # the values come from elsewhere (finished parts): the layout is written above
         stamp(tmp)
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
-        os.replace(tmp, target)
+        publish(Path(tmp), target, overwrite)
+    except OutputError:
+        _remove(tmp)
+        raise
     except OSError as exc:
         _remove(tmp)
         raise OutputError(f"cannot write {target}: {exc.strerror or exc}{_space(parent)}") from exc

@@ -40,10 +40,11 @@ def test_zarr_on_a_cluster_survives_a_killed_worker(tmp_path):
         run = threading.Thread(target=lambda: result.setdefault(
             "code", cli.main(["run", str(recipe), "-o", str(out), "-q", "--scheduler", cluster.scheduler_address])))
         run.start()
-        partial = tmp_path / ".cluster.zarr.partial" / "von_mises"
         deadline = time.monotonic() + 60
         while time.monotonic() < deadline and run.is_alive():
-            if partial.exists() and sum(1 for p in partial.rglob("*") if p.is_file()) > 6:
+            # the store is built under a unique temporary name: .cluster.zarr.HOST-PID.RANDOM.partial
+            partial = [p / "von_mises" for p in tmp_path.glob(".cluster.zarr.*.partial")]
+            if partial and sum(1 for p in partial[0].rglob("*") if p.is_file()) > 6:
                 break
             time.sleep(0.02)
         assert run.is_alive(), "the run finished before a worker could be killed"

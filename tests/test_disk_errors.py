@@ -38,3 +38,14 @@ def test_read_only_target(tmp_path, small_disk, capsys):
     assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.nc"), "-q"]) == 2
     assert "cannot write" in capsys.readouterr().err
     assert os.listdir(small_disk) == []
+
+
+def test_full_disk_zarr(tmp_path, small_disk, capsys):
+    pytest.importorskip("zarr")
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(RECIPE.replace("num = 200", "num = 400") + '[output]\nchunks = { y = 20 }\n')
+    for _ in range(3):     # threads still writing chunks after the first failure once recreated the store
+        assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.zarr"), "-q"]) == 2
+        err = capsys.readouterr().err
+        assert "cannot write" in err and "Traceback" not in err
+        assert os.listdir(small_disk) == []

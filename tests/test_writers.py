@@ -51,7 +51,7 @@ def test_leftover_parts_block_a_fresh_write_and_name_the_way_out(tmp_path):
 def test_a_new_format_is_one_row_of_the_table(tmp_path, monkeypatch):
     calls = []
 
-    def fake_write(ds, target, *, progress=False, scheduler=None):
+    def fake_write(ds, target, *, progress=False, scheduler=None, overwrite=False):
         calls.append(Path(target).name)
         Path(target).write_text("x")
         return Path(target)
