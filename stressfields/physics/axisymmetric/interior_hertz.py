@@ -1,0 +1,192 @@
+"""Closed forms below the surface: the Hertz field under normal load and the flat-punch kernel.
+
+Coordinates are divided by the contact radius a (x along the later tangential load, z >= 0 the
+depth into the body); stresses are tension-positive.  ``hertz_unit`` returns the Hertz field
+divided by the maximum pressure p0 (Huber 1904; Hamilton 1983; Johnson, Contact Mechanics 1985,
+sec. 3.4), written in the stable forms of docs/theory/interior.md (I3)-(I9): there is no 1/r^2
+term left, so points on or next to the axis (r = 0, 1e-16, 1e-8) and far away (r, z ~ 1e4) are
+evaluated without cancellation.  ``punch_unit`` is the flat punch of radius 1 pressed to depth 1
+into a half-space with E* = 1 (Sneddon 1946), obtained as the a-derivative of the Hertz field,
+docs/theory/interior.md (I10)-(I14), with the analytic scaling derivative.
+
+Accuracy contract: closed forms, relative error at most 1e-12 of |value| everywhere the value is
+finite, far field and next to edges included (limited only by the conditioning of the field with
+respect to the coordinates, e.g. next to the edge ring r = a, z = 0).  Pure NumPy.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["COMPONENTS", "hertz_unit", "punch_unit"]
+
+COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
+
+# 1 - atan(t)/t = sum_k (-1)^(k+1) t^(2k) / (2k+1); 28 terms reach 0.25^28/57 < 1e-18 at t = 1/2
+_ATAN_DEFECT = [(-1.0) ** (k + 1) / (2 * k + 1) for k in range(1, 29)]
+
+
+def _one_minus_m_atan(M):
+    """F(M) = 1 - M arctan(1/M) for M >= 0 (F(0) = 1), docs/theory/interior.md (I4).  The direct
+    form loses the digits of F ~ 1/(3 M^2) for large M (the far field); there the series in
+    t = 1/M is used (t < 1/2), and (t - atan t)/t, which loses at most one digit, for 1/2 <= t < 1."""
+    M = np.asarray(M, dtype=float)
+    out = np.empty_like(M)
+    small = M <= 1.0
+    out[small] = 1.0 - M[small] * (0.5 * math.pi - np.arctan(M[small]))
+    t = 1.0 / M[~small]
+    t2 = t * t
+    series = np.zeros_like(t)
+    for c in _ATAN_DEFECT[::-1]:
+        series = series * t2 + c
+    series *= t2
+    mid = t >= 0.5
+    series[mid] = (t[mid] - np.arctan(t[mid])) / t[mid]
+    out[~small] = series
+    return out
+
+
+def _geometry(x, y, z, rm1=None):
+    """The quantities of docs/theory/interior.md (I2)-(I3), with a = 1: r^2, A = r^2 + z^2 - 1
+    (as (r-1)(r+1) + z^2, exact next to the edge ring), S = sqrt(A^2 + 4 z^2), M, N with
+    M^2 - N^2 = A and M N = z (the larger one from its square root, the other as z over it),
+    W = r^2 + z^2 + 1 + S = 2 (1 + M^2), Q = 1 - N^2 = 2 r^2 / W, and R = N^2 / S (0 on the edge
+    ring, where S = 0 and N = 0).  ``rm1``, if given, is r - 1 computed by the caller without the
+    rounding of r = |x| / a (the superposition knows it from the node's offset)."""
+    r2 = x * x + y * y
+    if rm1 is None:
+        rm1 = np.sqrt(r2) - 1.0
+    A = rm1 * (rm1 + 2.0) + z * z
+    S = np.hypot(A, 2.0 * z)
+    big = A >= 0.0
+    with np.errstate(invalid="ignore", divide="ignore"):
+        root = np.sqrt(0.5 * (S + np.abs(A)))
+        other = np.where(root > 0.0, z / np.where(root > 0.0, root, 1.0), 0.0)
+    M = np.where(big, root, other)
+    N = np.where(big, other, root)
+    W = r2 + z * z + 1.0 + S
+    Q = 2.0 * r2 / W
+    with np.errstate(invalid="ignore", divide="ignore"):
+        R = np.where(S > 0.0, N * N / np.where(S > 0.0, S, 1.0), 0.0)
+    return dict(r2=r2, z=z, S=S, M=M, N=N, W=W, Q=Q, R=R)
+
+
+def _scalars(g, nu):
+    """Sigma = sigma_rr + sigma_tt, E = (sigma_rr - sigma_tt)/r^2, sigma_zz and T = sigma_rz / r of
+    the Hertz field / p0 (a = 1), docs/theory/interior.md (I5)-(I8)."""
+    N, M, W, R = g["N"], g["M"], g["W"], g["R"]
+    F = _one_minus_m_atan(M)
+    NR = N * R                                     # N^3 / S
+    sigma = NR - 2.0 * (1.0 + nu) * N * F
+    e1 = 8.0 * (1.0 - nu) * (2.0 + N) / (3.0 * W * W * (1.0 + N) ** 2)
+    e2 = _e2(g)
+    return dict(F=F, NR=NR, Sigma=sigma, E=e1 + e2, e1=e1, e2=e2, zz=-NR, T=-2.0 * M * R / W)
+
+
+def _near_axis(g):
+    """r^2 <= 1/4: (I7b), the form free of the axial cancellation, is used (S >= 3/4 there)."""
+    return g["r2"] <= 0.25
+
+
+def _h(N):
+    return (3.0 * N ** 3 + 6.0 * N ** 2 + 4.0 * N + 2.0) / (1.0 + N)
+
+
+def _e2(g):
+    """B2 / r^2 with B2 = N^3/S - (2/3)(1 - N^3)/r^2, docs/theory/interior.md (I7): on the axis
+    both terms are 1/(1 + z^2) and cancel, so near it (r^2 <= 1/4) the factored form (I7b) is
+    evaluated; elsewhere the direct one (I7a), which also holds on the edge ring (S = 0)."""
+    N, S, W, r2, NR = g["N"], g["S"], g["W"], g["r2"], g["N"] * g["R"]
+    near = _near_axis(g)
+    G = (1.0 + N + N * N) / (W * (1.0 + N))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        P2 = 4.0 * (1.0 + N + N * N) - W * _h(N)
+        factored = 2.0 * P2 / (3.0 * np.where(near, S, 1.0) * W * W * (1.0 + N))
+        direct = (NR - 4.0 / 3.0 * G) / np.where(near, 1.0, r2)
+    return np.where(near, factored, direct)
+
+
+def _cartesian(x, y, sigma, E, zz, T):
+    d = 0.5 * E * (x * x - y * y)
+    return {"xx": 0.5 * sigma + d, "yy": 0.5 * sigma - d, "zz": zz, "xy": E * x * y, "xz": x * T, "yz": y * T}
+
+
+def _coords(x, y, z):
+    x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
+    if np.any(z < 0.0):
+        raise ValueError("z (depth below the surface) must be >= 0")
+    return x, y, z
+
+
+def hertz_unit(x, y, z, nu) -> dict[str, np.ndarray]:
+    """Hertz (paraboloid) stress tensor below the surface, divided by p0, at coordinates divided by
+    the contact radius; docs/theory/interior.md (I5)-(I9) (Huber 1904, Hamilton 1983, Johnson 1985
+    sec. 3.4, in the stable forms).  Finite everywhere in z >= 0; on the edge ring r = 1, z = 0 the
+    exact limits sigma_rr = -sigma_tt = (1 - 2 nu)/3, sigma_zz = sigma_rz = 0.  Closed form:
+    relative error at most 1e-12 of |value| wherever the value is finite."""
+    x, y, z = _coords(x, y, z)
+    nu = np.asarray(nu, dtype=float)
+    s = _scalars(_geometry(x, y, z), nu)
+    return _cartesian(x, y, s["Sigma"], s["E"], s["zz"], s["T"])
+
+
+def _derivatives(g, s, nu):
+    """Scaling derivatives D f = (r d/dr + z d/dz) f of the scalars of ``_scalars``,
+    docs/theory/interior.md (I11)-(I13).  They carry 1/S: infinite on the edge ring."""
+    N, M, S, W, Q, R = g["N"], g["M"], g["S"], g["W"], g["Q"], g["R"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dS = (M * M * W - 2.0 * N * N * Q) / S
+        dNR = -N * R * (3.0 * Q + dS) / S
+        dsigma = dNR - 2.0 * (1.0 + nu) * (N * s["F"] - N / S)
+        de1 = s["e1"] / S * (N * Q * (3.0 + N) / ((2.0 + N) * (1.0 + N)) - 4.0 * M * M)
+        dT = s["T"] / S * (2.0 * N * N - 1.0 - M * M - dS)
+    return dict(Sigma=dsigma, E=de1 + _de2(g, dS, dNR), zz=-dNR, T=dT)
+
+
+def _de2(g, dS, dNR):
+    """D(B2 / r^2), docs/theory/interior.md (I13): from (I7b) near the axis, from (I7a) elsewhere."""
+    N, M, S, W, Q, r2 = g["N"], g["M"], g["S"], g["W"], g["Q"], g["r2"]
+    near = _near_axis(g)
+    onepn, n2 = 1.0 + N, N * N
+    with np.errstate(invalid="ignore", divide="ignore"):
+        h = _h(N)
+        dh = (6.0 * N ** 3 + 15.0 * n2 + 12.0 * N + 2.0) / onepn ** 2
+        P2 = 4.0 * (1.0 + N + n2) - W * h
+        dP2 = (-4.0 * (1.0 + 2.0 * N) * N * Q - 2.0 * M * M * W * h + W * dh * N * Q) / S
+        factored = 2.0 / (3.0 * S * W * W * onepn) * (dP2 - P2 * (dS + 4.0 * M * M - N * Q / onepn) / S)
+        G = (1.0 + N + n2) / (W * onepn)
+        dG = -G / S * (n2 * Q * (2.0 + N) / ((1.0 + N + n2) * onepn) + 2.0 * M * M)
+        B2 = N * g["R"] - 4.0 / 3.0 * G
+        direct = (dNR - 4.0 / 3.0 * dG - 2.0 * B2) / np.where(near, 1.0, r2)
+    return np.where(near, factored, direct)
+
+
+def punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
+    """Flat punch of radius 1 pressed to depth 1 into a half-space with E* = 1: the stress tensor
+    at coordinates divided by the punch radius, (1/pi)[S - (x d/dx + y d/dy + z d/dz) S] with S
+    the Hertz field of ``hertz_unit``, docs/theory/interior.md (I10)-(I14).  On the edge ring
+    r = 1, z = 0 the normal stresses are -inf and the shears NaN (their sign depends on the
+    direction of approach; zero where the component vanishes by symmetry).  Closed form: relative
+    error at most 1e-12 of |value| wherever the value is finite.  ``rm1``: r - 1 without rounding,
+    optional (see ``_geometry``)."""
+    x, y, z = _coords(x, y, z)
+    nu = np.asarray(nu, dtype=float)
+    g = _geometry(x, y, z, rm1)
+    s = _scalars(g, nu)
+    d = _derivatives(g, s, nu)
+    with np.errstate(invalid="ignore"):
+        k = _cartesian(x, y, s["Sigma"] - d["Sigma"], -(s["E"] + d["E"]), s["zz"] - d["zz"], -d["T"])
+    out = {c: v / math.pi for c, v in k.items()}
+    _edge_ring(out, x, y, g["S"] == 0.0)
+    return out
+
+
+def _edge_ring(out, x, y, ring):
+    """Values on the punch's edge ring (S = 0): docs/theory/interior.md (I14)."""
+    if not np.any(ring):
+        return
+    for c in ("xx", "yy", "zz"):
+        out[c] = np.where(ring, -math.inf, out[c])
+    for c, factor in (("xy", x * y), ("xz", x), ("yz", y)):
+        out[c] = np.where(ring, np.where(factor == 0.0, 0.0, math.nan), out[c])
