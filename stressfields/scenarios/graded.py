@@ -268,8 +268,7 @@ T_VARS = (
              comment="0: identical bodies, or nu = 1/(2+k) for every elastic body (sec. 5): the MDR solution is "
                      "exact; 1: the coupling is neglected (only with uncoupled_approximation = 'flag')"),
     _validity(T_FIELD, "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile with n + k <= 1; "
-              "2: NaN at r = 0 under partial slip for such a profile (the traction is the difference of two "
-              "unbounded pressures there and is not evaluated)"),
+              "under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) and flagged 0"),
 )
 
 

@@ -58,3 +58,33 @@ def uz_outside_ref(rho, k, n):
         else:
             total += _quad(lambda w: f(w) * (1.0 - w) ** k, lo, hi)
     return 2.0 / math.pi * math.sin(0.5 * math.pi * (1.0 - k)) * total
+
+
+def stick_zone_ref(rho, fx, k, n):
+    """J(rho) = int_c^1 xi^(n-1) (xi^2 - rho^2)^(-(1-k)/2) dxi for 0 <= rho <= c = c/a < 1: the shear
+    traction in the stick zone over mu (c_N* n kappa A_n / pi) a^(n+k-1) (eq. 45 written as one
+    integral, docs/theory/graded.md (G45)).  In v = xi - c, with the slip width D = 1 - c from (G33)
+    without rounding and the distance c - rho = (1 - rho) - D; the interval cut geometrically
+    around that distance (the kernel's near-singular end)."""
+    import math
+    D = -math.expm1(math.log1p(-fx) / (n + k + 1.0))
+    delta = (1.0 - rho) - D
+    alpha = -0.5 * (1.0 - k)
+
+    def f(v):      # without the factor (delta + v)^alpha
+        xi = (1.0 - D) + v
+        return xi ** (n - 1.0) * (xi + rho) ** alpha
+
+    cuts, x = [0.0], max(delta, 1e-300)
+    while x < D:
+        if x > 1e-30 * D:
+            cuts.append(x)
+        x *= 8.0
+    cuts.append(D)
+    total = 0.0
+    for lo, hi in zip(cuts[:-1], cuts[1:]):
+        if lo == 0.0 and delta == 0.0:
+            total += _quad(f, lo, hi, weight="alg", wvar=(alpha, 0.0))
+        else:
+            total += _quad(lambda v: f(v) * (delta + v) ** alpha, lo, hi)
+    return total

@@ -147,3 +147,70 @@ def test_reproducer_scenario_adhesive_without_adhesion_at_the_edge():
             "profile": "parabolic", "R": 1.0, "E0": 1e9, "nu": 0.3, "k": 0.5, "a": 0.01, "delta_gamma": 0.0,
             "r": [0.5, 1.0]}})
         assert ds.pressure.values.ravel()[1] == 0.0 and (ds.validity.values == 0).all()
+
+
+# ---------------------------------------------------------------- stick zone (G45)-(G48)
+
+def _stick_case(n, k, fx, method, rho):
+    """tau in the stick zone and its reference: mu (c_N* n kappa A / pi) a^(n+k-1) J, J by quadpack of
+    the defining integral (graded_reference.stick_zone_ref), kappa by scipy's beta (G13), c_N* of the
+    pair of identical bodies (G2)."""
+    from scipy.special import beta
+    from graded_reference import stick_zone_ref
+    a, mu, nu, E0, A = 0.003, 0.4, 0.3, 2e9, 0.7
+    tau = gp.tangential_fields(["shear_traction"], gp.Indenter.power_law(A, n), a=a, rho=np.asarray(rho, float),
+                               fx=fx, mu=mu, k=k, nu=nu, E0=E0, c0=1.0, method=method, rtol=RTOL)["shear_traction"]
+    pref = mu * M.c_N_star(k, nu, E0, 1.0, E0, nu) * n * 0.5 * n * beta(0.5 * n, 0.5 * (1 + k)) * A / math.pi
+    return tau, pref * a ** (n + k - 1.0) * np.array([stick_zone_ref(float(r), fx, k, n) for r in np.ravel(rho)])
+
+
+@settings(max_examples=25, **SETTINGS)
+@given(k=ks, n=ns, fx=st.floats(1.0, 12.0).map(lambda e: 10.0 ** -e) | st.floats(0.01, 0.99),
+       u=st.floats(0.0, 1.0 - 1e-9))
+def test_stick_zone_traction_against_its_integral(k, n, fx, u):
+    """r < c: tau = mu (c_N*/pi) int_c^a g'(x)(x^2 - r^2)^(-(1-k)/2) dx as one integral (G45); before, the
+    difference p(r; a) - p(r; c) lost digits like eps/fx (6e-4 relative at fx = 1e-12)."""
+    c = (1.0 - fx) ** (1.0 / (n + k + 1.0))
+    tau, ref = _stick_case(n, k, fx, "auto", [0.0, u * c, 0.5 * c])
+    assert rel(tau, ref) <= CF
+
+
+@settings(max_examples=6, **SETTINGS)
+@given(k=st.floats(0.0, 0.95), n=st.floats(0.4, 3.0), fx=st.sampled_from([1e-12, 1e-6, 0.3, 0.9]))
+def test_stick_zone_traction_quadrature_route(k, n, fx):
+    c = (1.0 - fx) ** (1.0 / (n + k + 1.0))
+    tau, ref = _stick_case(n, k, fx, "quadrature", [0.0, 0.4 * c, 0.999 * c])
+    assert rel(tau, ref) <= RTOL
+
+
+@settings(max_examples=20, **SETTINGS)
+@given(nk=st.floats(0.3, 1.0) | st.just(1.0), k=st.floats(0.0, 0.9), fx=st.floats(1e-12, 0.999))
+def test_centre_traction_under_partial_slip_is_finite(nk, k, fx):
+    """r = 0, n + k <= 1, 0 < fx < 1: tau = mu (c_N* n kappa A/pi) a^(n+k-1) (1 - (c/a)^(n+k-1))/(n+k-1)
+    (ln(a/c) at n + k = 1), (G47): the limit of int_c^a x^(n+k-2) dx, written here with c/a of (G33)."""
+    n = nk - k
+    if n <= 0.05:
+        return
+    tau, ref = _stick_case(n, k, fx, "auto", [0.0])
+    m, L = n + k - 1.0, math.log1p(-fx) / (n + k + 1.0)
+    closed = -L if m == 0.0 else -math.expm1(m * L) / m
+    assert np.isfinite(tau).all() and rel(tau, ref) <= CF
+    from graded_reference import stick_zone_ref
+    assert rel(stick_zone_ref(0.0, fx, k, n), closed) <= CF          # (G47) against quadpack
+
+
+def test_reproducer_centre_flags_under_partial_and_gross_slip():
+    """The cone at k = 0 (n + k = 1): finite tau(0) with validity 0 under partial slip (before: NaN, flag 2),
+    +inf with flag 1 in gross slip (fx = 1), on both routes."""
+    for method in ("auto", "quadrature"):
+        ds = sf.generate({"scenario": "graded_tangential", "method": {"method": method}, "parameters": {
+            "profile": "conical", "tan_theta": 0.1, "E0": 1e9, "nu": 0.3, "k": 0.0, "a": 0.002, "mu": 0.3,
+            "fx": [1e-12, 0.5, 1.0], "r": [0.0, 0.5]}, "output": {"variables": ["shear_traction"]}})
+        tau, flag = ds.shear_traction.values.reshape(3, 2), ds.validity.values.reshape(3, 2)
+        assert np.isfinite(tau[:2]).all() and (flag[:2] == 0).all()
+        assert np.isposinf(tau[2, 0]) and flag[2, 0] == 1 and flag[2, 1] == 0
+        # r = 0, n + k = 1: tau = mu (c_N* kappa tan(theta)/pi) ln(a/c), ln(a/c) = -log1p(-fx)/2 (G47)
+        kappa = 0.5 * math.pi                                     # (G13) at n = 1, k = 0: B(1/2, 1/2)/2
+        cN = 0.5 * 1e9 / (1 - 0.3 ** 2) * M.h_N(0.0, 0.3)         # identical bodies: half of (G2)
+        for i, fx in enumerate((1e-12, 0.5)):
+            assert rel(tau[i, 0], 0.3 * cN * kappa * 0.1 / math.pi * -math.log1p(-fx) / 2.0) <= CF

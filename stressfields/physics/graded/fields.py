@@ -16,6 +16,7 @@ import numpy as np
 from . import adhesive, normal, tangential
 from ._validate import check_mode
 from .indenter import Indenter, at_centre
+from .material import c_N_star
 from .profiles import kappa
 from .routes import QUADRATURE, resolve
 
@@ -132,9 +133,9 @@ def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0
     Body 2 as in :mod:`.tangential` (``E0_2=None`` identical, ``inf`` rigid).  stick_radius c/a
     (docs/theory/graded.md (G33); exactly 0 at ``fx`` = F_x/(mu F_N) = 1), tangential_displacement
     and max_tangential_displacement (G34), force_ratio F_x/(mu F_N) under the imposed ``delta_x``
-    (G35), normal_force of the pair (G16), shear_traction (G32): on the quadrature route +inf at an
-    unbounded centre in gross slip and NaN there under partial slip (a difference of two unbounded
-    pressures, not evaluated).  ``rho = r/a`` may be given instead of ``r`` (as in :func:`normal_fields`).
+    (G35), normal_force of the pair (G16), shear_traction (G32): in the stick zone the one integral
+    (G45)-(G48) on both routes (finite at r = 0 also where n + k <= 1), +inf only at an unbounded
+    centre in gross slip.  ``rho = r/a`` may be given instead of ``r`` (as in :func:`normal_fields`).
     """
     if not names:           # (a block holding only flags may lack the geometry)
         return {}
@@ -167,17 +168,21 @@ def tangential_fields(names: Sequence[str], profile: Indenter, *, a, r=0.0, fx=0
         return np.where(fx >= 1.0, 0.0, c)
 
     def shear(prof, r, a, fx, mu, c0, **m):
-        c = stick(prof, a, fx, m["k"])
         mat = dict(m, c0=c0)
-        cs = np.where(c > 0, c, a)
-        # p(r; c) in the unit of the point: c/a against r/a (lam = a), or c against r (lam = 1)
-        sc, lam = (cs / a, a) if rho is not None else (cs, 1.0)
-
-        def tau(rr):
-            pc = normal._pressure_quad_at(rr, sc, lam, prof, mat, rtol)
-            return mu * (normal.pressure_quad(profile=prof, **at(rr, a), **mat, rtol=rtol) - np.where(c > 0, pc, 0.0))
-        # at an unbounded centre: +inf in gross slip, not evaluated (NaN, flagged) under partial slip
-        return at_centre(r, a, prof, m["k"], tau, np.where(c > 0, np.nan, np.inf))
+        k = np.asarray(m["k"], float)
+        sc, D = tangential.slip_width_quad(a, fx, prof, k=k, rtol=rtol)
+        rel, e = (r, 1.0 - r) if rho is not None else (r / a, (a - r) / a)
+        stick = rel < sc
+        # stick zone: the one integral (G45) at r/a, never p(r; a) - p(r; c) (error ~ rtol/F)
+        J = tangential.stick_zone_integral_quad(np.where(stick, rel, 0.0), sc, D, a, prof, k=k, rtol=rtol,
+                                                one_minus_rho=np.where(stick, e, 1.0))
+        tau_stick = mu * c_N_star(**mat) * a ** k / np.pi * J
+        # slip annulus and gross slip: mu p(r; a); +inf at an unbounded centre in gross slip (c = 0)
+        # (stick points are moved to the edge r = a, where p = 0 costs nothing)
+        r_slip = np.where(stick, 1.0 if rho is not None else a, r)
+        tau_slip = mu * at_centre(r_slip, a, prof, k, lambda rr: normal.pressure_quad(
+            profile=prof, **at(rr, a), **mat, rtol=rtol), np.inf)
+        return np.where(stick, tau_stick, tau_slip)
 
     quad = {
         "stick_radius": lambda prof, a, fx, k, **_: stick(prof, a, fx, k) / a,

@@ -187,10 +187,13 @@ def pressure(r, a, *, k, nu, E0, c0, n, A_n, E0_2=np.inf, nu_2=None, rho=None):
 
 def _pressure_at(x, s, radius, mat, n, A_n):
     """p at the point x for the contact radius ``radius`` (x and s in one unit, x/s = r/radius)."""
-    cN = c_N_star(**mat)
+    return _prefactor(radius, mat, n, A_n) * _shape(x, s, np.asarray(mat["k"], float), n)
+
+
+def _prefactor(radius, mat, n, A_n):
+    """c_N* n kappa A_n radius^(n+k-1) / pi: the pressure over its shape Phi (G18) [pressure]."""
     k = np.asarray(mat["k"], float)
-    pref = cN * n * kappa(n, k) * A_n * radius ** (n + k - 1.0) / np.pi
-    return pref * _shape(x, s, k, n)
+    return c_N_star(**mat) * n * kappa(n, k) * A_n * radius ** (n + k - 1.0) / np.pi
 
 
 def surface_displacement(r, a, *, k, n, A_n, rho=None):

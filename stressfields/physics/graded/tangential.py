@@ -17,16 +17,18 @@ from __future__ import annotations
 
 import numpy as np
 
+from .. import quadrature
 from ..roots import bisect
 from . import _mdr, normal
 from ._validate import check_interval, check_k, check_nu, check_positive
 from .material import c_N_star, c_T_star, tangential_decoupled
-from .profiles import g_quad
+from .profiles import dg_quad, g_quad
 
 __all__ = ["stick_radius", "stiffness_ratio", "max_tangential_displacement",
            "tangential_displacement", "force_ratio_from_displacement", "shear_traction",
            "normal_force", "stick_radius_quad", "tangential_displacement_quad",
-           "max_tangential_displacement_quad", "force_ratio_quad"]
+           "max_tangential_displacement_quad", "force_ratio_quad", "slip_width", "stick_zone_integral",
+           "slip_width_quad", "stick_zone_integral_quad"]
 
 
 def _pair(k, nu, E0, E0_2, nu_2, require_decoupled):
@@ -114,28 +116,126 @@ def normal_force(a, *, k, nu, E0, c0, n, A_n, E0_2=None, nu_2=None):
     return normal.normal_force(a, k=k_, nu=nu_, E0=E0, c0=c0, n=n, A_n=A_n, E0_2=E0_2_, nu_2=nu_2_)
 
 
+def slip_width(Fx_over_muFN, *, k, n=2.0):
+    """(c/a, 1 - c/a) of (G33), docs/theory/graded.md (G46): both without rounding.
+
+    log(c/a) = log1p(-F)/(n+k+1) and 1 - c/a = -expm1(log(c/a)): forming 1 - c/a from the rounded
+    c/a would lose all digits of the slip width at F = 1e-16 (and 4 of 12 at F = 1e-12).
+    """
+    log_s = _log_stick(Fx_over_muFN, k, n)
+    return np.exp(log_s), -np.expm1(log_s)
+
+
+def _log_stick(Fx_over_muFN, k, n):
+    """log(c/a) = log1p(-F)/(n+k+1), (G33); -inf at F = 1."""
+    F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
+    with np.errstate(divide="ignore"):          # F = 1: log1p(-1) = -inf, c/a = 0, 1 - c/a = 1
+        return np.log1p(-F) / (check_positive("n", n) + check_k(k) + 1.0)
+
+
+def _stick_distances(rho, e, sc, D):
+    """(c/a - rho, 1 - rho^2, c^2/a^2 - rho^2) for rho < c/a, without cancellation: c/a - rho as
+    (1 - rho) - (1 - c/a) where c/a > 1/2 (there 1 - c/a is small and exact, 1 - rho given exactly),
+    else as c/a - rho (there c/a carries the relative error of its logarithm only)."""
+    delta = np.where(sc > 0.5, e - D, sc - rho)
+    return delta, e * (1.0 + rho), delta * (sc + rho)
+
+
+def _power_width(A, B, q, AmB):
+    """A^q - B^q (A > B >= 0) with full relative accuracy also for A - B << B, given A - B exactly:
+    B^q expm1(q log1p((A-B)/B)) where B > A/2, the plain difference elsewhere (there it keeps at
+    least 1 - 2^-q >= 0.29 of A^q, so no digit is lost)."""
+    close = B > 0.5 * A
+    Bs = np.where(close, B, 1.0)
+    return np.where(close, Bs ** q * np.expm1(q * np.log1p(AmB / Bs)), A ** q - B ** q)
+
+
+def stick_zone_integral(rho, Fx_over_muFN, *, k, n, one_minus_rho=None):
+    """J = int_c^1 xi^(n-1) (xi^2 - rho^2)^(-(1-k)/2) dxi (c = c/a, 0 <= rho < c), docs/theory/graded.md (G45).
+
+    The stick-zone traction is tau = mu (c_N* n kappa A_n / pi) a^(n+k-1) J: the one integral of
+    (G32), not the difference of two pressures (whose relative error grows like eps/F for small
+    F = F_x/(mu F_N)).  With xi^2 - rho^2 = u^(2/(1+k)) the kernel is removed exactly:
+    J = (1/(1+k)) int_{B^q}^{A^q} (rho^2 + u^(1/q))^((n-2)/2) du, q = (1+k)/2, A = 1 - rho^2,
+    B = c^2 - rho^2 (G45), whose width A^q - B^q is formed without cancellation (G46).  n = 2:
+    the integrand is 1 (exact); otherwise tanh-sinh to the closed-form tolerance; rho = 0:
+    (1 - c^(n+k-1))/(n+k-1), and ln(a/c) at n + k = 1 (G47).  ``one_minus_rho`` (exact) may be
+    given with rho.  Closed form: relative error at most 1e-12 of |value|.  Dimensionless.
+    """
+    rho = check_positive("rho", rho, allow_zero=True)
+    k = check_k(k)
+    n = check_positive("n", n)
+    log_s = _log_stick(Fx_over_muFN, k, n)
+    sc, D = np.exp(log_s), -np.expm1(log_s)
+    e = 1.0 - rho if one_minus_rho is None else np.asarray(one_minus_rho, float)
+    rho, e, sc, D, log_s, k, n = np.broadcast_arrays(rho, e, sc, D, log_s, k, n)
+    out = np.full(rho.shape, np.nan)            # rho >= c: outside the stick zone, not defined here
+    centre = (rho == 0.0) & (sc > 0.0)
+    if centre.any():
+        m = (n[centre] - 1.0) + k[centre]       # n - 1 first: exact near n + k = 1
+        ls = log_s[centre]                      # not log(c/a) of the rounded c/a: 1 - c/a may be ~F
+        ms = np.where(m == 0.0, 1.0, m)
+        out[centre] = np.where(m == 0.0, -ls, -np.expm1(m * ls) / ms)
+    inner = (rho > 0.0) & (rho < sc)
+    if inner.any():
+        out[inner] = _stick_u_integral(rho[inner], e[inner], sc[inner], D[inner], k[inner], n[inner])
+    return out
+
+
+def _stick_u_integral(rho, e, sc, D, k, n):
+    """(G45) at 0 < rho < c in the u form (see :func:`stick_zone_integral`)."""
+    q = 0.5 * (1.0 + k)
+    _, A, B = _stick_distances(rho, e, sc, D)
+    W = _power_width(A, B, q, D * (1.0 + sc))     # A - B = 1 - c^2 = (1 - c)(1 + c)
+    mean = np.ones(rho.shape)
+    curved = n != 2.0
+    if curved.any():
+        mean[curved] = _mean_power(rho[curved], B[curved] ** q[curved], W[curved], q[curved], n[curved])
+    return W * mean / (1.0 + k)
+
+
+def _mean_power(rho, Bq, W, q, n):
+    """int_0^1 (rho^2 + u^(1/q))^((n-2)/2) ds, u = B^q + W s, by tanh-sinh (blocks of points)."""
+    out = np.empty(rho.shape)
+    for s in range(0, rho.size, normal._BLOCK):
+        b = [v[s:s + normal._BLOCK, None] for v in (rho, Bq, W, q, n)]
+
+        def integrand(t, tc, rho=b[0], Bq=b[1], W=b[2], q=b[3], n=b[4]):
+            return (rho * rho + (Bq + W * t) ** (1.0 / q)) ** (0.5 * (n - 2.0))
+
+        out[s:s + normal._BLOCK] = quadrature.integrate(integrand, rtol=normal._COSH_RTOL, level=4, max_level=11)
+    return out
+
+
 def shear_traction(r, a, Fx_over_muFN, *, k, nu, mu, E0, c0, n, A_n, E0_2=None, nu_2=None,
                    require_decoupled=True, rho=None):
     """Shear traction tau_x(r) = mu [p(r; a) - p(r; c)], eqs. (44)-(45), docs/theory/graded.md (G32) [pressure].
 
     p is the normal pressure of the body pair (c_N of eq. 46 for identical bodies).  tau = mu p in
-    the slip annulus c < r < a; finite at r = c (both terms are continuous there).  Both pressures
-    are evaluated at r/a against the radii 1 and c/a (``rho = r/a`` may be given instead of r), so
-    that the edge distances 1 - r/a and c/a - r/a are exact.  Closed form: relative error at most
-    1e-12 of the value where the two terms do not cancel (the slip annulus and gross slip); in the
-    stick zone at most 1e-12 of mu p(r; a).
+    the slip annulus c < r < a and in gross slip; in the stick zone r < c the one integral
+    mu (c_N* n kappa A_n / pi) a^(n+k-1) J of :func:`stick_zone_integral` ((G45)-(G47)), never the
+    difference of the two pressures, finite also at r = 0 where n + k <= 1 (G47).  The point is
+    taken as r/a (``rho = r/a`` may be given instead of r), so that the edge distances 1 - r/a and
+    c/a - r/a are exact.  Closed form: relative error at most 1e-12 of |value| everywhere the value
+    is finite, far field and next to edges included; +inf only at r = 0 in gross slip (F = 1)
+    where n + k <= 1.
     """
     k_, nu_, E0_, E0_2_, nu_2_ = _pair(k, nu, E0, E0_2, nu_2, require_decoupled)
     mu = check_positive("mu", mu, allow_zero=True)
     x, s, a = normal.position(r, a, rho)
-    F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
-    sc = s * (1.0 - F) ** (1.0 / (check_positive("n", n) + k_ + 1.0))    # stick radius in the unit of x
+    n = check_positive("n", n)
+    sc, _ = slip_width(Fx_over_muFN, k=k_, n=n)
     mat = dict(k=k_, nu=nu_, E0=E0, c0=c0, E0_2=E0_2_, nu_2=nu_2_)
-    pa = normal._pressure_at(x, s, a, mat, n, A_n)
-    c = a * sc / s
-    pc = np.where(np.broadcast_to(sc, np.broadcast(sc, x).shape) > 0,
-                  normal._pressure_at(x, np.where(sc > 0, sc, 1.0), np.where(c > 0, c, 1.0), mat, n, A_n), 0.0)
-    return mu * (pa - pc)
+    rel = x / s                                   # exact where rho is given (s = 1)
+    stick = np.broadcast_to(rel < sc, np.broadcast(rel, sc).shape)
+    out = mu * normal._pressure_at(x, s, a, mat, n, A_n)
+    if np.any(stick):
+        e = (s - x) / s                           # 1 - r/a, exact where rho is given
+        J = stick_zone_integral(np.where(stick, rel, 0.0), Fx_over_muFN, k=k_, n=n,
+                                one_minus_rho=np.where(stick, e, 1.0))
+        tau = mu * normal._prefactor(a, mat, n, A_n) * J
+        out = np.where(stick, tau, out)
+    return out
 
 
 # --------------------------------------------------------------------------- quadrature route
@@ -185,6 +285,84 @@ def max_tangential_displacement_quad(a, profile, *, k, nu, mu, E0=None, E0_2=Non
     """delta_x,max = mu (c_N/c_T) g(a) (eq. 50, docs/theory/graded.md (G34)) with g(a) by quadrature."""
     ratio = stiffness_ratio(k=k, nu=nu, E0=E0, E0_2=E0_2, nu_2=nu_2, require_decoupled=require_decoupled)
     return mu * ratio * normal.depth_quad(a, profile, k=k, rtol=rtol)
+
+
+def _moment_quad(a, lo_off, hi_off, profile, k, rtol, from_edge):
+    """int g'(a xi) xi^(1+k) dxi over xi in [1 - hi_off, 1 - lo_off] (from_edge) or [lo_off, hi_off],
+    split at the profile's break points; the offsets are kept exact (no 1 - xi is formed)."""
+    a, lo_off, hi_off, k = (v[..., None] for v in np.broadcast_arrays(a, lo_off, hi_off, k))
+    cuts = [(1.0 - b / a) if from_edge else b / a for b in np.asarray(profile.breaks, float)]
+    edges = [lo_off] + [np.clip(c, lo_off, hi_off) for c in cuts] + [hi_off]
+    total = 0.0
+    for x0, x1 in zip(edges[:-1], edges[1:]):
+        L = x1 - x0
+
+        def integrand(t, tc, x0=x0, L=L):
+            off = x0 + L * t
+            xi = 1.0 - off if from_edge else off
+            # below xi = 1e-100 the integrand ~ xi^(n+k) adds < 1e-100 of the total, and f''(x t) inside
+            # g' overflows for x t < ~1e-200 (n = 0.4: measured failure of dg_quad at x = 1e-200)
+            live = xi > 1e-100
+            xs = np.where(live, xi, 1.0)
+            return np.where(live, L * dg_quad(a * xs, profile, k=k, rtol=rtol) * xs ** (1.0 + k), 0.0)
+
+        total = total + quadrature.integrate(integrand, rtol=rtol)
+    return total
+
+
+def slip_width_quad(a, Fx_over_muFN, profile, *, k, rtol=1e-10):
+    """(c/a, 1 - c/a) for any profile object, each with relative error near rtol, docs/theory/graded.md (G48).
+
+    1 - F = F_N(c)/F_N(a) and F F_N(a) = (2 c_N*/(1+k)) int_c^a g'(x) x^(1+k) dx, both without a
+    difference: bisection in log(1 - c/a) on the second where F <= 1/2 (a thin slip annulus), in
+    log(c/a) on the first elsewhere (a small stick zone); 1074 bits of exponent range / 2^60 steps.
+    """
+    F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
+    k = check_k(k)
+    a = check_positive("a", a)
+    a, F, k = np.broadcast_arrays(a, F, k)
+    ones = np.ones(a.shape)
+    total = _moment_quad(a, np.zeros(a.shape), ones, profile, k, rtol, from_edge=False)
+    tiny = np.full(a.shape, 1e-300)
+    thin = F <= 0.5
+    D = bisect(lambda w: _moment_quad(a, 0.0 * w, w, profile, k, rtol, True) < F * total, tiny, ones, 60,
+               geometric=True)
+    sc = bisect(lambda s: _moment_quad(a, 0.0 * s, s, profile, k, rtol, False) < (1.0 - F) * total, tiny, ones,
+                60, geometric=True)
+    D = np.where(F == 0.0, 0.0, np.where(thin, D, 1.0 - sc))
+    sc = np.where(F == 1.0, 0.0, np.where(thin, 1.0 - D, sc))
+    return sc, D
+
+
+def stick_zone_integral_quad(rho, sc, D, a, profile, *, k, rtol=1e-10, one_minus_rho=None):
+    """int_c^1 g'(a xi) (xi^2 - rho^2)^(-(1-k)/2) dxi (0 <= rho < c = c/a) by tanh-sinh, (G45) for any
+    profile: (1/(1+k)) int_{B^q}^{A^q} g'(a xi)/xi du with xi = sqrt(rho^2 + u^(1/q)), split at the
+    profile's break points; the width A^q - B^q as in (G46).  NaN outside the stick zone."""
+    rho, sc, D, a, k = np.broadcast_arrays(*(np.asarray(v, float) for v in (rho, sc, D, a, k)))
+    e = 1.0 - rho if one_minus_rho is None else np.broadcast_to(np.asarray(one_minus_rho, float), rho.shape)
+    out = np.full(rho.shape, np.nan)
+    m = rho < sc
+    if not m.any():
+        return out
+    rho, e, sc, D, a, k = (v[m][:, None] for v in (rho, e, sc, D, a, k))
+    q = 0.5 * (1.0 + k)
+    _, A, B = _stick_distances(rho, e, sc, D)
+    W = _power_width(A, B, q, D * (1.0 + sc))
+    Bq = B ** q
+    cuts = [np.clip(np.maximum(b * b / (a * a) - rho * rho, 0.0) ** q - Bq, 0.0, W)
+            for b in np.asarray(profile.breaks, float)]
+    edges = [np.zeros_like(W)] + cuts + [W]
+    total = 0.0
+    for x0, x1 in zip(edges[:-1], edges[1:]):
+        L = x1 - x0
+
+        def integrand(t, tc, x0=x0, L=L):
+            xi = np.sqrt(rho * rho + (Bq + x0 + L * t) ** (1.0 / q))
+            return L * dg_quad(a * xi, profile, k=k, rtol=rtol) / xi
+
+        total = total + quadrature.integrate(integrand, rtol=rtol)
+    out[m] = total / (1.0 + k[:, 0])
+    return out
 
 
 def force_ratio_quad(a, delta_x, profile, *, k, nu, mu, E0=None, E0_2=None, nu_2=None,
