@@ -194,7 +194,7 @@ def test_cli_writes_netcdf(tmp_path):
                       'a = [0.2, 0.5]\nx = [0.0, 0.5, 1.5]\n')
     assert cli.main(["run", str(recipe), "-o", str(tmp_path / "w.nc"), "-q"]) == 0
     with xr.open_dataset(tmp_path / "w.nc") as ds:
-        assert ds.continuous_contact.attrs["flag_meanings"] == "fails holds"
+        assert ds.continuous_contact.attrs["flag_meanings"] == "fails holds undetermined_series_not_converged"
         assert ds.pressure.sel(x=1.5).values.max() == 0.0
         assert ds.error_estimate.attrs["units"] == "1" and "n_terms" in ds
 
@@ -247,3 +247,18 @@ def _value(v) -> str:
     if isinstance(v, list):
         return "[" + ", ".join(map(_value, v)) + "]"
     return repr(v) if not (isinstance(v, float) and math.isinf(v)) else "inf"
+
+
+def test_continuous_contact_is_not_decided_from_an_unconverged_series():
+    """rtol below the rounding of f3: the series of p/sqrt(1-(x/a)^2) cannot meet it, so (W20) is flagged 2
+    (undetermined), never 0 or 1; at an attainable rtol the same cases are decided (1)."""
+    for domain in ("periodic", "nonperiodic"):
+        recipe = {"scenario": "wavy", "parameters": {"domain": domain, **F3, "a": [0.3, 0.9]},
+                  "output": {"variables": ["continuous_contact"]}}
+        tight = sf.generate({**recipe, "method": {"rtol": 1e-14}}).compute()
+        assert tight.continuous_contact.values.tolist() == [2, 2]
+        meanings = tight.continuous_contact.attrs["flag_meanings"].split()
+        assert meanings[2] == "undetermined_series_not_converged"
+        assert list(tight.continuous_contact.attrs["flag_values"]) == [0, 1, 2]
+        ok = sf.generate({**recipe, "method": {"rtol": 1e-10}}).compute()
+        assert ok.continuous_contact.values.tolist() == [1, 0]   # f3 at 0.9: tensile edge, (W20)

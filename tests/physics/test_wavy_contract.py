@@ -115,3 +115,75 @@ def test_reproducer_full_contact():
     exact = 2 * np.sin(0.5 * np.pi * 0.999999)
     assert abs(float(ds.peak_pressure) - exact) <= 1e-12 * exact
     assert int(ds.converged) == 1 and int(ds.continuous_contact) == 1 and int(ds.validity.squeeze()) == 0
+
+
+def _legendre_exact(k, u):
+    """P_k(1 - 2u) in exact rational arithmetic (u a Fraction)."""
+    return sum((-1) ** m * comb(k, m) * comb(k + m, m) * u ** m for m in range(k + 1))
+
+
+@SETTINGS
+@given(w=st.one_of(st.floats(1e-9, 1e-3), widths), n=st.integers(2, 40))
+def test_periodic_approach_is_relative_accurate(w, n):
+    """(W16) against its Legendre polynomials evaluated exactly in rationals at u = sin^2(a/2) (the
+    terms 1 - (P_n + P_{n-1})/2 and P_{n-1} - P_n cancel in floating point as a -> 0)."""
+    s = float(np.sin(0.5 * np.pi * w))
+    u = Fraction(s * s)
+    ref = 0.0
+    for k in (1, n):
+        pk, pk1 = _legendre_exact(k, u), _legendre_exact(k - 1, u)
+        ref += -k * np.log(s) * float(pk1 - pk) + float(1 - (pk + pk1) / 2)
+    v = wavy.approach(w, [1.0, 1.0], [1, n], periodic=True)
+    assert abs(v - ref) <= 1e-12 * abs(ref)
+
+
+@SETTINGS
+@given(w=st.one_of(st.floats(1e-9, 1e-3), widths))
+def test_one_periodic_harmonic_approach_is_westergaard(w):
+    """(W27): delta/Delta = sin^2(a/2) [1 - 2 ln sin(a/2)], down to 2a/lambda_1 = 1e-9."""
+    s = np.sin(0.5 * np.pi * w)
+    exact = s * s * (1.0 - 2.0 * np.log(s))
+    assert abs(wavy.approach(w, [1.0], [1], periodic=True) - exact) <= 1e-12 * exact
+
+
+def _bessel_miller(z):
+    """J_k(z), k = 0..top, by Miller's backward recurrence in extended precision, normalised by
+    J_0 + 2 sum J_2k = 1 (independent of scipy's jv, which it matches to ~4e-17 absolute)."""
+    ld = np.longdouble
+    top = int(z + 12 * np.cbrt(z) + 60)
+    top += top % 2
+    j = np.zeros(top + 2, dtype=ld)
+    j[top] = ld(1e-300)
+    for k in range(top, 0, -1):
+        j[k - 1] = (2 * k / ld(z)) * j[k] - j[k + 1]
+        if abs(j[k - 1]) > ld(1e300):
+            j[k - 1:] /= ld(1e300)
+    return j[:top + 1] / (j[0] + 2 * np.sum(j[2:top + 1:2]))
+
+
+def _nonperiodic_reference(t, w, amps, wns):
+    """(W8)/(W9) summed to the end of the Miller table in extended precision."""
+    ld = np.longdouble
+    a = np.pi * w
+    th = 2 * np.arctan2(np.sqrt(1 - np.asarray(t, dtype=ld)), np.sqrt(1 + np.asarray(t, dtype=ld)))
+    out = np.zeros(th.shape, dtype=ld)
+    for d, n in zip(np.asarray(amps) / amps[0], wns):
+        J = _bessel_miller(a * n)
+        for m in range((len(J) - 1) // 2):
+            out += ld(2 * d * n) * (-1) ** m * J[2 * m + 1] * np.sin((2 * m + 1) * th)
+    return out.astype(float)
+
+
+@settings(derandomize=True, max_examples=30, deadline=None)
+@given(w=st.floats(1e-6, 0.99), rest=st.lists(st.tuples(st.floats(-0.5, 0.5), st.integers(2, 400)), max_size=2),
+       rtol=st.sampled_from([1e-8, 1e-12, 1e-15]))
+def test_nonperiodic_error_estimate_is_an_upper_bound(w, rest, rtol):
+    """(W22), (W23): |error| <= error_estimate against the extended-precision reference, and the flag
+    is the contract's: converged = 1 exactly when error_estimate <= rtol p*."""
+    amps, wns = _profile(rest)
+    t = np.concatenate([np.linspace(0.0, 1.0, 33), 1 - np.logspace(-15, -1, 8)])
+    p, info = wavy.pressure(t, w, amps, wns, periodic=False, rtol=rtol)
+    err = np.abs(p - _nonperiodic_reference(t, w, amps, wns))
+    assert np.all(err <= info["error_estimate"])
+    assert np.array_equal(info["converged"], info["error_estimate"] <= rtol)
+    assert np.all(err[info["converged"]] <= rtol * np.maximum(np.abs(p), 1.0)[info["converged"]])

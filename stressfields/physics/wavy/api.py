@@ -13,7 +13,7 @@ amplitudes, wavenumbers : 1-D harmonic table, gap g(x) = sum_i Delta_i (1 - cos(
     row 0 is the base wave (n = 1, Delta_1 > 0).  Only Delta_i/Delta_1 matters.
 periodic : True for the periodic surface (cot kernel), False for a single indenter (Cauchy kernel).
 n_harmonics : optional int array, use the first N rows of the table (default: all).
-rtol : series tolerance relative to sum_i |weight_i| ||C_i||_2 (see ``series``).
+rtol : tolerance: |error| <= rtol * max(|value|, p*) (see ``series``).
 max_terms : cap on the number of series terms (per contact width).
 
 All array arguments broadcast together.  Normalisation, docs/theory/wavy.md (W2): p* = pi E* Delta_1/lambda_1
@@ -21,7 +21,8 @@ with E* = E/(1 - nu^2); lengths u_z, gap in units of Delta_1; x in units of a.
 Series quantities return ``(value, info)`` with info = {"n_terms", "error_estimate",
 "converged"} broadcast to the value's shape: n_terms sine terms were summed (highest order
 2*n_terms - 1); error_estimate (in the value's units) = bound of the truncated tail + an estimate
-of rounding; converged = error_estimate <= rtol * scale (docs/theory/wavy.md (W22), (W23)).
+of rounding, an upper bound of |error|; converged = error_estimate <= rtol * p* (docs/theory/wavy.md (W22),
+(W23)).
 When rtol cannot be met (2a/lambda_1 -> 1 with the length capped at max_terms, or rtol below
 rounding) the best value is returned with converged = False and the honest estimate.
 """

@@ -40,7 +40,8 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
     * mean_pressure -- p_inf/p*, closed forms (W11) (periodic) and (W12) (non-periodic);
     * peak_pressure -- p(0)/p*, (W13); max_pressure, max_pressure_x -- the global maximum over the
       contact /p* and its position x/a >= 0, (W14);
-    * continuous_contact -- int8, 1 where (P) and (G) of (W20) hold;
+    * continuous_contact -- int8, 1 where (P) and (G) of (W20) hold, 0 where one fails, 2 where the series
+      of p/sqrt(1 - (x/a)^2) did not meet rtol, so the test cannot decide (W25);
     * johnson_parameter -- max over the ripples i >= 2 of chi_i, (W21) (0 for one harmonic);
     * n_terms, error_estimate (/p*), converged (int8) -- the series length, its error bound and
       whether rtol was met, (W22), (W23);
@@ -88,10 +89,18 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
         pmax, xmax, _ = api.max_pressure(*table, **series)
         out.update(max_pressure=pmax, max_pressure_x=xmax)
     if "continuous_contact" in wanted:
-        out["continuous_contact"] = api.continuous_contact(*table, **series).astype(np.int8)
+        out["continuous_contact"] = _continuous_contact(table, series)
     if "periodic_correction" in wanted:
         out["periodic_correction"] = api.periodic_correction(*table, n_harmonics=n_harmonics, rtol=rtol,
                                                              max_terms=max_terms)[0]
     if "johnson_parameter" in wanted:
         out["johnson_parameter"] = api.johnson_parameter(*table, **exact)
     return {n: out[n] for n in names}
+
+
+def _continuous_contact(table, series) -> np.ndarray:
+    """(W20) decided only from a converged series: 1 holds, 0 fails, 2 undetermined (W25)."""
+    v = api.contact_validity(*table, **series)
+    # the bound of the error of p/sqrt(1 - (x/a)^2) itself (>= the pressure's for the closed form)
+    decided = v["converged"] & (v["error_estimate"] <= series["rtol"])
+    return np.where(decided, v["ok"].astype(np.int8), 2).astype(np.int8)

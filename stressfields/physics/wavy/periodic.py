@@ -119,14 +119,36 @@ def approach(a, delta_ratio, n, N):
 
     n = 1 gives Westergaard's Delta sin^2(a/2) (1 - 2 ln sin(a/2)), docs/theory/wavy.md (W27).
     """
-    c = np.cos(a)
+    a = np.asarray(a, dtype=float)
+    u = np.sin(0.5 * a) ** 2
     lns = np.log(np.sin(0.5 * a))
     out = np.zeros(np.broadcast(a, N).shape)
     for i in range(len(n)):
-        p1, p0 = eval_legendre(n[i] - 1, c), eval_legendre(n[i], c)
-        term = delta_ratio[i] * (-n[i] * lns * (p1 - p0) + 1.0 - 0.5 * (p0 + p1))
-        out += np.where(N > i, term, 0.0)
+        k = int(n[i])
+        # both differences without cancellation as a -> 0 (W34): P_{n-1} - P_n = 2u P^(1,0)_{n-1}
+        diff = 2.0 * u * _jacobi10(k - 1, u)
+        rest = 0.5 * (_one_minus_legendre(k, u) + _one_minus_legendre(k - 1, u))
+        out += np.where(N > i, delta_ratio[i] * (-k * lns * diff + rest), 0.0)
     return out
+
+
+def _one_minus_legendre(k, u):
+    """1 - P_k(1 - 2u), docs/theory/wavy.md (W16), (W34).
+
+    Where (k+1)^2 u <= 1/2: -sum_{m>=1} (-k)_m (k+1)_m/(m!)^2 u^m (the 2F1 form of P_k), first term
+    k(k+1)u, alternating terms shrinking at least twofold, so relative accuracy is kept as a -> 0
+    (the difference 1 - P_k loses every digit at 2a/lambda_1 = 1e-9); elsewhere 1 - P_k directly
+    (then 1 - P_k >= O(1/k^2), no cancellation worth a digit)."""
+    u = np.asarray(u, dtype=float)
+    if k == 0:
+        return np.zeros(u.shape)
+    small = (k + 1) ** 2 * u <= 0.5
+    term = np.full(u.shape, float(k * (k + 1))) * u
+    total = term.copy()
+    for m in range(1, min(k, 40)):   # ratio <= 1/2 and falling like 1/m^2: 40 terms reach far below eps
+        term = term * -(k - m) * (k + 1 + m) * u / ((m + 1) * (m + 1))
+        total = total + term
+    return np.where(small, total, 1.0 - eval_legendre(k, 1.0 - 2.0 * u))
 
 
 def _w_of_x(x, a):

@@ -55,9 +55,10 @@ def resolve(method: str, rtol: float) -> tuple[str, str]:
         return (f"the paper's approximate {method.removeprefix('approximate_')} (inaccurate; for comparison only)",
                 "not controlled: see the exact series")
     return (_SERIES_ROUTE + (_AUTO_ROUTE if substitutes(method) else ""),
-            f"periodic: rounding bound (W31) below rtol = {rtol:g} times p*; non-periodic: series error below "
-            f"rtol = {rtol:g} times the contact's coefficient scale sum_i |w_i| ||C_i||_2; per case in "
-            "error_estimate, flagged in converged")
+            f"quadrature and series: |error| <= rtol * max(|value|, S), rtol = {rtol:g}, S = p* for pressures "
+            "(Delta_1 for u_z); periodic: rounding bound of the closed form (W31), non-periodic: truncated "
+            "tail plus rounding of the Bessel series (W22), (W23); error_estimate is an upper bound of |error|, "
+            "converged = 1 if and only if error_estimate <= rtol * S")
 
 
 def _known(method: str) -> str:

@@ -17,11 +17,12 @@ Truncation.  For each contact angle the coefficients are computed on a window of
 (L from the laws of docs/theory/wavy.md (W24)), and the number of terms K kept is the smallest with
 
     tail(K) = sum_{m>=K} sum_i |w_i C_im|  (+ geometric extrapolation beyond the window)
-            <= rtol * sum_i |w_i| ||C_i||_2  (the contact's magnitude scale, (W22)).
+            <= rtol * min(1, sum_i |w_i| ||C_i||_2)  (p* = 1, or the contact's smaller magnitude, (W22)).
 
 tail(K) bounds |p - p_K|/p* pointwise (|sin| <= 1); plus rounding terms (coefficient noise,
-summation) it is returned as the error estimate, and ``converged`` means the estimate is
-<= rtol * scale: docs/theory/wavy.md (W22), (W23).
+summation) it is returned as the error estimate, an upper bound of |error|, and ``converged``
+means the estimate is <= rtol * p*: the contract |error| <= rtol * max(|value|, p*),
+docs/theory/wavy.md (W22), (W23).
 When the tail is not small inside the window, the window is doubled, up to ``max_terms``;
 past that the row is returned with ``converged = False`` and the (large) honest estimate.
 """
@@ -49,8 +50,8 @@ class SeriesTable:
     K: np.ndarray          # (R,) terms kept
     err: np.ndarray        # (R,) bound of |p - p_K| / p*
     err_shape: np.ndarray  # (R,) bound of the error of p/sin(theta) (weights 2m+1)
-    converged: np.ndarray  # (R,) error estimate <= rtol * scale reached
-    scale: np.ndarray      # (R,) sum_i |w_i| ||C_i||_2, the size rtol refers to (W22)
+    converged: np.ndarray  # (R,) error estimate <= rtol (p* units) reached
+    scale: np.ndarray      # (R,) sum_i |w_i| ||C_i||_2; truncation aims at rtol * min(1, scale) (W22)
 
 
 def _module(is_periodic):
@@ -102,14 +103,18 @@ def _truncate(wC, N_values, rtol, window_full, noise, weighted):
     total, total_w = tail + floor, tail_w + floor_w                        # estimates for each K
     crit_tail, crit = (tail_w, total_w) if weighted else (tail, total)
 
-    tol = (rtol * scale)[..., None]
+    # the contract: |error| <= rtol * max(|value|, p*), p* = 1 here; converged <=> estimate <= rtol.
+    # Truncation aims at rtol * min(p*, scale): narrow contacts (scale ~ a n < 1) keep rtol relative
+    # to their own size for a few more Bessel terms; a contact far larger than p* is cut at rtol p*,
+    # or flagged where the rounding floor (~ eps * scale) exceeds it.
+    tol = (rtol * np.minimum(scale, 1.0))[..., None]
     window = slice(1, L - max(2, L // 8) + 1)  # keep part of the window beyond K as evidence
     found = (crit_tail[..., window] <= tol).any(axis=-1)  # truncation reached: a longer window won't help
     ok = crit[..., window] <= tol
     K = np.where(ok.any(axis=-1), 1 + np.argmax(ok, axis=-1),
                  np.where(found, 1 + np.argmin(crit[..., window], axis=-1), L))
     take = lambda arr: np.take_along_axis(arr, K[..., None], axis=-1)[..., 0]
-    return dict(D=D, K=K, err=take(total), err_shape=take(total_w), converged=take(crit) <= tol[..., 0],
+    return dict(D=D, K=K, err=take(total), err_shape=take(total_w), converged=take(crit) <= rtol,
                 scale=scale, done=found.all(axis=1) | window_full)
 
 
