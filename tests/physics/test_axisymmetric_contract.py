@@ -125,3 +125,64 @@ def test_tensile_tabulated_profile_is_refused():
                                                                  "profile_f": f, "x": [0.6], "y": 0.0}})
     # a convex table is accepted, with p >= 0 everywhere
     assert ax.min_pressure(ax.tabulated(r, np.square(r) / 2), 1.0)[0] >= 0.0
+
+
+# -- Hertz–Mindlin as c -> a ------------------------------------------------------------------------
+
+def _hm_moment(h, r, lo, hi):
+    """int_lo^hi h(u) u g'(u) du / sqrt(r^2 - u^2) for g' = 2u (R = 1), hi <= r, by adaptive quad:
+    u = lo + w (r - lo, hi - lo exact) off the root, u = r - v^2 onto it."""
+    from scipy.integrate import quad
+
+    def f(u):
+        return h(u) * 2.0 * u * u
+
+    opts = dict(epsabs=0.0, epsrel=2e-14, limit=200)
+    if hi < r:
+        d0 = r - lo
+        return quad(lambda w: f(lo + w) / math.sqrt((d0 - w) * (r + lo + w)), 0.0, hi - lo, **opts)[0]
+    return quad(lambda v: 2.0 * f(r - v * v) / math.sqrt(2.0 * r - v * v), 0.0, math.sqrt(r - lo), **opts)[0]
+
+
+def _hm_reference(x, y, c, nu, mu):
+    """(sxx, syy, sxy) of (A39)-(A41) by quadrature (polynomials regrouped with r^2 - u^2 >= 0, no
+    term cancels) and sxz, dp/dz of (A35), (A56) in 60-digit decimals of the exact binary inputs;
+    a = R = 1, r the kernels' hypot(x, y)."""
+    r = math.hypot(x, y)
+    lo, hi, r2 = min(r, c), min(r, 1.0), r * r
+
+    def d(u):
+        return (r - u) * (r + u)
+
+    if r <= c:
+        inplane = (0.0, 0.0, 0.0)
+    else:
+        ixx = _hm_moment(lambda u: r2 * r2 + nu * ((x * x - 3 * y * y) * d(u) + y * y * r2), r, lo, hi)
+        iyy = _hm_moment(lambda u: u * u * x * x + 3 * y * y * d(u), r, lo, hi)
+        ixy = _hm_moment(lambda u: (1 - 2 * nu) * r2 * r2 + 2 * nu * (u * u * y * y + 3 * x * x * d(u)), r, lo, hi)
+        k = mu / (math.pi * r2 ** 3)
+        inplane = (-2 * k * x * ixx, -2 * nu * k * x * iyy, -k * y * ixy)
+    X, R, C, NU, MU, PI = (Decimal(float(v)) for v in (x, r, c, nu, mu, math.pi))
+    sa, sc = (((b - R) * (b + R)).sqrt() if R < b else Decimal(0) for b in (Decimal(1), C))
+    sxz = -MU * 2 / PI * (sa - sc)
+    dp = Decimal(0) if R >= 1 else -4 * (1 + NU) * MU / (3 * PI) * X * (1 / sa - (1 / sc if R < C else 0))
+    return inplane + (float(sxz), float(dp))
+
+
+@pytest.mark.parametrize("eps", [1e-4, 1e-8, 1e-12])
+def test_hertz_mindlin_as_c_tends_to_a(eps):
+    """The stick-zone differences of (A35), (A49), (A56) lost 1/(1 - (c/a)^3) relative digits (1e-6
+    relative at c/a = 1 - 1e-10); (A99)-(A101) keep 1e-12 of |value| in the stick zone, the thin
+    slip annulus, next to the edge and far outside."""
+    from stressfields.physics.axisymmetric import tangential
+    P, one, c, nu, mu = ("paraboloid", 1.0), np.array([1.0]), 1.0 - eps, 0.3, 0.5
+    for rho in (0.3, c * (1 - 0.5 * eps), c + 0.5 * eps, 1 - 0.25 * eps, 1 + 0.5 * eps, 1 + 1e-6, 1.5, 1e3):
+        for phi in (0.0, 0.4, 1.2):
+            x, y = rho * math.cos(phi), rho * math.sin(phi)
+            r = math.hypot(x, y)
+            a1 = (x * one, y * one, r * one, one, c * one, nu * one, mu * one)
+            got = [float(v[0]) for v in tangential.inplane_closed(P, *a1)]
+            got.append(float(tangential.shear_closed(P, r * one, one, c * one, mu * one)[0]))
+            got.append(float(tangential.dpdz_closed(P, x * one, r * one, one, c * one, nu * one, mu * one)[0]))
+            for name, g, e in zip(("xx", "yy", "xy", "xz", "dpdz"), got, _hm_reference(x, y, c, nu, mu)):
+                assert g == pytest.approx(e, rel=1e-12, abs=1e-300), (name, rho, phi)

@@ -178,3 +178,26 @@ def test_abel_derivatives_against_quadrature_of_the_spline(table):
     # the axis: the first piece is kept exact, g'(0) = (pi/2) f'(0) and g''(0) = 2 f''(0)
     assert float(prof.dg(0.0)) == float(prof._sums(0.0, 1))
     assert float(prof.d2g(0.0)) == float(prof._sums(0.0, 2))
+
+
+@pytest.mark.parametrize("ux0", [0.0, 0.25], ids=["normal", "partial_slip"])
+def test_dpdz_within_relative_1e12_of_knots(ux0):
+    """|error| <= rtol max(|value|, p_m/a) at rtol 1e-8 ... 1e-12 for points 1e-6 and 1e-12 (relative)
+    on either side of knots in the stick zone, the slip annulus and outside.  (A reference that
+    integrates eq. (11) in u itself, with the knot and the root u = r as break points 1e-7 apart,
+    is off by 2.6e-4 of p_m/a at r = 0.3 (1 + 1e-6): QUADPACK's extrapolation fails next to the root; the u = r -+ v^2
+    references above agree with the kernels to 3e-16.)"""
+    prof = ax.tabulated(RS, FS)
+    a = 1.0
+    c = a if ux0 == 0.0 else float(ax.stick_radius(a, NU, MU, ux0, prof))
+    mu = MU if ux0 else 0.0
+    r = np.array([k * (1.0 + s * d) for k in (0.3, 0.8, 1.05) for d in (1e-6, 1e-12) for s in (-1.0, 1.0)])
+    x, y = r * math.cos(PHI), r * math.sin(PHI)
+    r = np.hypot(x, y)
+    ref = np.array([_normal(prof, ri, a, NU) + (_tangential(prof, xi, ri, a, c, NU, mu) if ux0 else 0.0)
+                    for ri, xi in zip(r, x)])
+    scale = float(ax.mean_pressure(a, prof)) / a
+    for rtol in (1e-8, 1e-10, 1e-12):
+        got = ax.surface_dpdz(x, y, a, c, NU, mu, prof, method="quadrature", rtol=rtol)
+        err = np.abs(got - ref) / np.maximum(scale, np.abs(ref))
+        assert err.max() <= rtol, (rtol, float(r[np.argmax(err)]), err.max())

@@ -12,7 +12,8 @@ The one place that decides "a closed form exists" (docs/theory/axisymmetric.md (
 * ``closed`` and ``quadrature`` force a route; the kernels refuse ``closed`` where no closed form
   exists, and a flat punch always uses its closed forms (its g' is a Dirac delta).
 
-The strings of ``resolve`` are written into files and must not change.
+The strings of ``resolve`` are written into files; they state the accuracy contract, proved by
+tests/physics/test_axisymmetric_contract.py and tests/physics/test_axisymmetric_tabulated.py.
 """
 from __future__ import annotations
 
@@ -29,7 +30,8 @@ CLOSED_KINDS: tuple[str, ...] = ("cone", "paraboloid", "flat_punch")
 #: power-law exponents n with closed forms, and the closed-form family each one is
 POWER_LAW_CLOSED: dict[float, str] = {1.0: "cone", 2.0: "paraboloid"}
 
-_CLOSED = ("closed form", "double-precision rounding (relative error about 1e-14)")
+_CLOSED = ("closed form", "relative error at most 1e-12 of |value| everywhere the value is finite, far field and "
+                           "next to edges included")
 _QUADRATURE = "one-dimensional Gauss quadrature of the MDR integrals"
 
 
@@ -71,4 +73,5 @@ def resolve(profile, method: str, rtol: float, n=None) -> Route:
         raise ValueError(f"unknown axisymmetric method {method!r}; allowed: {', '.join(METHODS)}")
     if method == "closed" or (method == "auto" and has_closed_form(profile, n)):
         return Route(*_CLOSED)
-    return Route(_QUADRATURE, f"relative error below rtol = {rtol:g} of the mean contact pressure scale")
+    return Route(_QUADRATURE, f"|error| <= rtol = {rtol:g} times max(|value|, the variable's normalisation scale: "
+                              "p_m for stresses, p_m/a for dpdz)")

@@ -17,7 +17,8 @@ import math
 
 import numpy as np
 
-from .common import arccosh_ratio, hertz_f2, hertz_f4, sqrt_diff
+from ..quadrature import gauss_legendre
+from .common import arccosh_ratio, sqrt_diff
 
 __all__ = ["shear_closed", "inplane_closed", "dpdz_closed", "shear_from_integrals",
            "inplane_from_moments", "dpdz_from_integrals", "inplane_angles"]
@@ -47,7 +48,9 @@ def shear_closed(closed, r, a, c, mu):
             return np.where(r <= a, -mu * p0 * np.where(stick, v_stick, v_slip), 0.0)
         if kind == "paraboloid":
             P = 2.0 / (math.pi * closed[1])
-            return -mu * P * (np.where(r <= a, sa, 0.0) - np.where(r <= c, sc, 0.0))
+            # stick zone: sa - sc = (a - c)(a + c)/(sa + sc), no cancellation as c -> a (A99)
+            v = np.where(r <= c, (a - c) * (a + c) / (sa + sc), sa)
+            return -mu * P * np.where(r <= a, v, 0.0)
         if kind == "flat_punch":
             return np.where(r <= a, -mu * closed[2] / (math.pi * sa), 0.0)
     raise ValueError(f"no closed form for {kind!r}")  # pragma: no cover
@@ -63,9 +66,46 @@ def _cone_e3(A, Cc, a, c, r, outside):
     return np.where(outside, out, 2.0 + gamma)
 
 
+# Gauss–Legendre rule for the Hertz moments: sin^2 t and sin^2 t cos^2 t are trigonometric
+# polynomials of degree 4, so on an interval of length <= pi/2 a 12-point rule errs by less than
+# (pi/2)^25 (12!)^4 4^24 / (25 (24!)^3) = 2e-19 of the integrand's scale (and, as the interval
+# shrinks, by a further factor (length)^24): exact to rounding, with positive terms only.
+_HK_NODES, _HK_WEIGHTS = (v.copy() for v in gauss_legendre(12))
+
+
+def _hertz_angles(r, a, c):
+    """(theta_c, theta_a - theta_c) with theta_b = arcsin(min(r, b)/r): the difference from
+    sin(theta_a - theta_c) = (a - c)(a + c)/(a s_c + c s_a) and cos = (s_a s_c + a c)/r^2 (s_b =
+    sqrt(r^2 - b^2), 0 inside), so that a - c, exact in floating point near c = a, carries it
+    (docs/theory/axisymmetric.md (A100))."""
+    sa, sc = sqrt_diff(r, np.minimum(r, a)), sqrt_diff(r, np.minimum(r, c))
+    th_c = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, sc))
+    # r <= c: empty; c < r <= a: arccos(c/r); r > a: the difference of the two arcsines
+    slip = np.arctan2(sc, c)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        outer = np.arctan2(r * r * ((a - c) * (a + c) / (a * sc + c * sa)), sa * sc + a * c)
+    delta = np.where(r <= c, 0.0, np.where(r <= a, slip, outer))
+    return th_c, delta
+
+
+def _hertz_hk(r, a, c):
+    """H / r^4 = 2 int sin^4 t dt and K / r^4 = 2 int sin^2 t cos^2 t dt over [theta_c, theta_a],
+    with F / r^2 = H + K of eqs. (16)-(17) (A49) and the difference a - c
+    (docs/theory/axisymmetric.md (A101)): one Gauss–Legendre rule on the interval itself, so that
+    neither the far field nor c -> a cancels."""
+    th_c, delta = _hertz_angles(r, a, c)
+    t = th_c[..., None] + delta[..., None] * _HK_NODES
+    s2 = np.sin(t) ** 2
+    w = 2.0 * delta[..., None] * _HK_WEIGHTS
+    H = (w * s2 * s2).sum(axis=-1)
+    K = (w * s2 * np.cos(t) ** 2).sum(axis=-1)
+    return H, K
+
+
 def inplane_closed(closed, x, y, r, a, c, nu, mu):
-    """(sxx, syy, sxy) / E* of the tangential load: cone eq. (40), paraboloid eqs. (15)-(17)
-    (F, H by series far outside), flat punch eq. (19).  Zero in the stick zone r <= c."""
+    """(sxx, syy, sxy) / E* of the tangential load: cone eq. (40), paraboloid eqs. (15)-(17) (in the
+    positive-term form (A101), its moments by a rule exact to rounding), flat punch eq. (19).  Zero
+    in the stick zone r <= c."""
     kind = closed[0]
     X, Y = x / r, y / r
     X2, Y2 = X * X, Y * Y
@@ -86,15 +126,12 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu):
             syy = -2.0 * nu * k * X * D1 * (3.0 * Y2 + (1.0 - 4.0 * Y2) / 3.0 * E3)
             sxy = k * Y * D1 * (-(1.0 - 2.0 * nu) - 6.0 * nu * X2 + 2.0 * nu / 3.0 * (4.0 * X2 - 1.0) * E3)
         elif kind == "paraboloid":
-            R = closed[1]
-            th_a = np.where(r <= a, 0.5 * math.pi, np.arctan2(a, sqrt_diff(r, a)))
-            th_c = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, sqrt_diff(r, c)))
-            F = hertz_f2(th_a) - hertz_f2(th_c)            # F / r^2 of (16)-(17), difference a - c
-            H = hertz_f4(th_a) - hertz_f4(th_c)            # H / r^4
-            k = mu / (math.pi * R)
-            sxx = -2.0 * k * x * (((1.0 + nu) - 3.0 * nu * Y2) * F - nu * (1.0 - 4.0 * Y2) * H)
-            syy = -2.0 * nu * k * x * (3.0 * Y2 * F + (1.0 - 4.0 * Y2) * H)
-            sxy = -k * y * (((1.0 - 2.0 * nu) + 6.0 * nu * X2) * F + 2.0 * nu * (1.0 - 4.0 * X2) * H)
+            H, K = _hertz_hk(r, a, c)
+            k = mu / (math.pi * closed[1])
+            # eqs. (15)-(17) with F = H + K: every bracket a sum of non-negative terms (A101)
+            sxx = -2.0 * k * x * ((1.0 + nu * Y2) * H + ((1.0 + nu) - 3.0 * nu * Y2) * K)
+            syy = -2.0 * nu * k * x * (X2 * H + 3.0 * Y2 * K)
+            sxy = -k * y * ((1.0 - 2.0 * nu * X2) * H + ((1.0 - 2.0 * nu) + 6.0 * nu * X2) * K)
         elif kind == "flat_punch":
             depth = closed[2]
             outside = r > a
@@ -130,7 +167,9 @@ def dpdz_closed(closed, x, r, a, c, nu, mu):
             v = np.where(stick, v_stick, np.where(inside, v_slip, 0.0))
         elif kind == "paraboloid":
             k = 2.0 * C2 * mu / (math.pi * closed[1])
-            v = -k * x * (np.where(inside, 1.0 / sa, 0.0) - np.where(stick, 1.0 / sc, 0.0))
+            # stick zone: 1/sa - 1/sc = -(a - c)(a + c)/(sa sc (sa + sc)), no cancellation as c -> a (A100)
+            v_stick = np.where(c == a, 0.0, -(a - c) * (a + c) / (sa * sc * (sa + sc)))
+            v = -k * x * np.where(stick, v_stick, np.where(inside, 1.0 / sa, 0.0))
         elif kind == "flat_punch":
             v = np.where(inside, C2 * mu * closed[2] * x / (math.pi * sa ** 3), 0.0)
         else:  # pragma: no cover
