@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-__all__ = ["COMPONENTS", "hertz_unit", "punch_unit"]
+__all__ = ["COMPONENTS", "hertz_unit", "punch_unit", "sliding_unit"]
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
 
@@ -31,7 +31,8 @@ def _one_minus_m_atan(M):
     """F(M) = 1 - M arctan(1/M) for M >= 0 (F(0) = 1), docs/theory/interior.md (I4).  The direct
     form loses the digits of F ~ 1/(3 M^2) for large M (the far field); there the series in
     t = 1/M is used (t < 1/2), and (t - atan t)/t, which loses at most one digit, for 1/2 <= t < 1."""
-    M = np.asarray(M, dtype=float)
+    M = np.asarray(M)
+    M = M.astype(np.result_type(M.dtype, np.float64))   # keeps np.longdouble (the tests' reference)
     out = np.empty_like(M)
     small = M <= 1.0
     out[small] = 1.0 - M[small] * (0.5 * math.pi - np.arctan(M[small]))
@@ -190,3 +191,98 @@ def _edge_ring(out, x, y, ring):
         out[c] = np.where(ring, -math.inf, out[c])
     for c, factor in (("xy", x * y), ("xz", x), ("yz", y)):
         out[c] = np.where(ring, np.where(factor == 0.0, 0.0, math.nan), out[c])
+
+
+# -- sliding (Hamilton & Goodman 1966): traction q0 sqrt(1 - r^2) along +x ----------------------
+
+# x - sin x = sum_k (-1)^(k+1) x^(2k+1) / (2k+1)!; 12 terms reach 1/25! < 1e-25 at x = 1
+_X_MINUS_SIN = [(-1.0) ** (k + 1) / math.factorial(2 * k + 1) for k in range(1, 13)]
+
+
+def _x_minus_sin(x, sin_x):
+    """x - sin x for 0 <= x <= 2 pi: the series below x = 1 (where the difference loses the digits
+    of x^3/6, e.g. 8 digits at x = 1e-4, the far field), the direct difference above (at most one
+    digit lost: 1 - sin 1 = 0.16).  ``sin_x`` is sin x formed algebraically by the caller."""
+    small = x < 1.0
+    x2 = x * x
+    series = np.zeros_like(x)
+    for c in _X_MINUS_SIN[::-1]:
+        series = series * x2 + c
+    return np.where(small, series * x2 * x, x - sin_x)
+
+
+# 3 F(M) - 1/(1 + M^2) = sum_k (-1)^(k+1) (2 - 2k)/(2k + 1) t^(2k), t = 1/M (the k = 1 term is 0)
+_H_SERIES = [(-1.0) ** (k + 1) * (2.0 - 2.0 * k) / (2 * k + 1) for k in range(1, 30)]
+
+
+def _three_f_minus(M):
+    """H(M) = 3 F(M) - 1/(1 + M^2) >= 0, docs/theory/interior.md (I21): the two terms agree to
+    O(1/M^2) and H ~ (2/5) / M^4 in the far field, where the difference would lose all digits
+    (the axial shear of the sliding field is -N H / 2 there); series in t = 1/M for M >= 2, the
+    direct difference below (at most one digit lost, at M = 2)."""
+    far = M >= 2.0
+    t2 = 1.0 / np.where(far, M, 1.0) ** 2
+    series = np.zeros_like(t2)
+    for c in _H_SERIES[::-1]:
+        series = series * t2 + c
+    direct = 3.0 * _one_minus_m_atan(M) - 1.0 / (1.0 + M * M)
+    return np.where(far, series * t2, direct)
+
+
+def _sliding_scalars(g):
+    """The radial functions of the sliding field, docs/theory/interior.md (I19)-(I21), with a = 1,
+    q0 = 1: D = (1/r) d/dr, Lambda the harmonic potential of (I18) and Phi = Lambda_zz.  Every
+    1/S is taken with the factor (M^2, N^2 or M N, each <= S) that makes it bounded; on the edge
+    ring (S = 0) those products multiply a vanishing factor and are set to 0 (I22)."""
+    M, N, S = g["M"], g["N"], g["S"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        inv_s = np.where(S > 0.0, 1.0 / np.where(S > 0.0, S, 1.0), 0.0)
+    m2, mn, n2 = M * M * inv_s, M * N * inv_s, N * N * inv_s
+    opm = 1.0 + M * M
+    opn = 1.0 + N
+    phi = np.arctan2(1.0, M)
+    t20 = 0.5 * _x_minus_sin(2.0 * phi, 2.0 * M / opm)                 # int_u^inf ds / (sqrt(s)(1+s)^2)
+    t31 = _x_minus_sin(4.0 * phi, 4.0 * M * (M * M - 1.0) / (opm * opm)) / 16.0   # int sqrt(s)/(1+s)^3
+    dgz = -(2.0 * math.pi / 3.0) * (2.0 + N) / (opm * opm * opn * opn)
+    bracket = 4.0 * M * M * (2.0 + N) / (opm * opn * opn) - N * (3.0 + N) / opn ** 3
+    zd2gz = (2.0 * math.pi / 3.0) * mn * bracket / (opm * opm)           # z D^2 g_z
+    return dict(
+        P=-math.pi * t20,                                               # D Phi = g_zz
+        H=_three_f_minus(M),                                            # (Phi_z - z D Phi) = -pi N H
+        Dg=g["z"] * dgz + math.pi * t31,
+        D2g=zd2gz - 2.0 * math.pi * M * m2 / opm ** 3,                  # D^2 g = z D^2 g_z - D^2 g_Psi
+        Dgz=dgz,
+        zD2gz=zd2gz,
+        zDgzz=2.0 * math.pi * N * m2 / (opm * opm),                     # z D^2 Phi
+        zgzzz=2.0 * math.pi * M * n2 / opm,                             # z D Phi_z
+    )
+
+
+def sliding_unit(x, y, z, nu) -> dict[str, np.ndarray]:
+    """Hertz sliding field (Hamilton & Goodman 1966; Hamilton 1983): the stress tensor below the
+    surface under the tangential traction q = q0 sqrt(1 - r^2) along +x (sigma_xz = -q at z = 0),
+    divided by q0, at coordinates divided by the contact radius; docs/theory/interior.md
+    (I18)-(I22), written with the radial functions of the harmonic potential of the Cerruti
+    superposition, none of which is divided by r (the axis r = 0, 1e-16, 1e-8 needs no branch).
+    Finite and continuous everywhere in z >= 0, the edge ring r = 1, z = 0 included.  Closed form:
+    relative error at most 1e-12 of |value| everywhere the value is finite, far field and next to
+    edges included (where a component passes through zero: of the largest component)."""
+    x, y, z = _coords(x, y, z)
+    nu = np.asarray(nu, dtype=float)
+    g = _geometry(x, y, z)
+    return _sliding_cartesian(x, y, z, nu, _sliding_scalars(g), g["N"])
+
+
+def _sliding_cartesian(x, y, z, nu, s, N):
+    """(I21): the Cartesian components from the radial functions; the shear sigma_xz as the sum of
+    two terms of one sign (-N H / 2 and -x^2 z D^2 Phi / (2 pi)), so that the far-field
+    cancellation of Phi_z against z D Phi (exact for a point load) never happens in rounding."""
+    x2, y2 = x * x, y * y
+    P, Dg, Dgz = s["P"], s["Dg"], s["Dgz"]
+    k = 1.0 / (4.0 * math.pi)
+    xx = 2.0 * x * (2.0 * P - 3.0 * z * Dgz - x2 * s["zD2gz"] + 2.0 * nu * (3.0 * Dg + x2 * s["D2g"])) \
+        + 4.0 * nu * x * P
+    yy = 2.0 * x * (-z * Dgz - y2 * s["zD2gz"] + 2.0 * nu * (Dg + y2 * s["D2g"])) + 4.0 * nu * x * P
+    xy = y * (2.0 * P - 2.0 * (z * Dgz + x2 * s["zD2gz"]) + 4.0 * nu * (Dg + x2 * s["D2g"]))
+    return {"xx": k * xx, "yy": k * yy, "zz": -2.0 * k * x * s["zgzzz"], "xy": k * xy,
+            "xz": -0.5 * N * s["H"] - 2.0 * k * x2 * s["zDgzz"], "yz": -2.0 * k * x * y * s["zDgzz"]}

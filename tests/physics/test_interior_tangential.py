@@ -1,0 +1,223 @@
+"""The Hertz sliding field and the Cattaneo–Mindlin partial-slip field below the surface
+(docs/theory/interior.md (I18)-(I23)) against routes that share no code with them:
+
+* oracle-free: equilibrium and Beltrami–Michell compatibility by central differences (the residual
+  must fall like h^2; a field with nu perturbed must fail) and the traction conditions at z -> 0;
+* the defining integral: the Cerruti point load (its textbook displacements, differentiated by
+  complex step) integrated over the traction q0 sqrt(1 - r^2) by a 2-D product rule;
+* on the axis, the same integral reduced to 1-D; next to it, the closed form in np.longdouble;
+* the surface kernels of the family (docs/theory/axisymmetric.md (A34)-(A36)) at z = 0;
+* the Cerruti point load in the far field.
+"""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from stressfields.physics import axisymmetric as ax
+from stressfields.physics.axisymmetric.interior_hertz import (_geometry, _sliding_cartesian, _sliding_scalars,
+                                                             sliding_unit)
+from stressfields.physics.axisymmetric.interior_tangential import interior_stress_tangential
+from stressfields.physics.axisymmetric.surface import surface_stress
+
+NU = 0.3
+RNG = np.random.default_rng(11)
+POINTS = np.column_stack([RNG.uniform(-1.6, 1.6, 10), RNG.uniform(-1.6, 1.6, 10), RNG.uniform(0.15, 1.6, 10)])
+ROWS = [("xx", "xy", "xz"), ("xy", "yy", "yz"), ("xz", "yz", "zz")]
+
+
+def _tensor(f, p, nu=NU):
+    s = f(p[..., 0], p[..., 1], p[..., 2], nu)
+    return np.stack([np.stack([s[c] for c in row], -1) for row in ROWS], -2)
+
+
+def _residuals(f, h, p=POINTS):
+    """max |div sigma| and max |Beltrami–Michell residual| by central differences of step h."""
+    e = np.eye(3)
+    t = lambda q: _tensor(f, q)
+    div = sum((t(p + h * e[j])[..., :, j] - t(p - h * e[j])[..., :, j]) / (2 * h) for j in range(3))
+    bm = sum((t(p + h * e[k]) - 2 * t(p) + t(p - h * e[k])) / h ** 2 for k in range(3))
+    tr = lambda q: np.trace(t(q), axis1=-2, axis2=-1)
+    for i in range(3):
+        for j in range(3):
+            d2 = (tr(p + h * e[i] + h * e[j]) - tr(p + h * e[i] - h * e[j]) - tr(p - h * e[i] + h * e[j])
+                  + tr(p - h * e[i] - h * e[j])) / (4 * h * h)
+            bm[:, i, j] += d2 / (1 + NU)
+    return np.abs(div).max(), np.abs(bm).max()
+
+
+def test_equilibrium_and_compatibility_fall_like_h2():
+    coarse, fine = _residuals(sliding_unit, 1e-3), _residuals(sliding_unit, 5e-4)
+    for c, fi in zip(coarse, fine):
+        assert fi < 1e-4 and 3.5 < c / fi < 4.5        # O(h^2): the field solves both PDEs
+
+
+def test_residual_check_discriminates():
+    def wrong(x, y, z, nu):
+        s = sliding_unit(x, y, z, nu)
+        s["xx"] = sliding_unit(x, y, z, nu * 1.01)["xx"]
+        return s
+    assert _residuals(wrong, 5e-4)[1] > 30 * _residuals(sliding_unit, 5e-4)[1]
+
+
+def test_traction_boundary_conditions():
+    """z -> 0: sigma_xz = -q = -sqrt(1 - r^2) inside, 0 outside; sigma_zz = sigma_yz = 0."""
+    r = np.array([0.0, 0.3, 0.6, 0.9, 1.2, 2.0])
+    for z in (0.0, 1e-12, 1e-10):
+        s = sliding_unit(r * 0.8, r * 0.6, z, NU)
+        assert np.allclose(s["xz"], -np.sqrt(np.clip(1 - r * r, 0, None)), rtol=0, atol=1e-9)
+        assert np.all(np.abs(s["zz"]) < 1e-9) and np.all(np.abs(s["yz"]) < 1e-9)
+
+
+# -- the defining integral: Cerruti point loads over the traction ---------------------------------
+
+def _cerruti_u(x, y, z, nu):
+    """Displacements (G = 1, unit force along +x at the origin) of the Cerruti point load (Johnson,
+    Contact Mechanics 1985, sec. 3.2)."""
+    rho = np.sqrt(x * x + y * y + z * z)
+    k, b = 1 / (4 * math.pi), 1 - 2 * nu
+    ux = k * (1 / rho + x * x / rho ** 3 + b * (1 / (rho + z) - x * x / (rho * (rho + z) ** 2)))
+    uy = k * (x * y / rho ** 3 - b * x * y / (rho * (rho + z) ** 2))
+    uz = k * (x * z / rho ** 3 + b * x / (rho * (rho + z)))
+    return ux, uy, uz
+
+
+def _cerruti_stress(x, y, z, nu):
+    """Hooke's law on the complex-step gradient of ``_cerruti_u`` (exact to rounding)."""
+    h = 1e-30
+    grad = np.empty((3, 3) + np.shape(x))
+    for j in range(3):
+        p = [np.asarray(v, dtype=complex) for v in (x, y, z)]
+        p[j] = p[j] + 1j * h
+        for i, u in enumerate(_cerruti_u(*p, nu)):
+            grad[i, j] = u.imag / h
+    lam = 2 * nu / (1 - 2 * nu)
+    div = grad[0, 0] + grad[1, 1] + grad[2, 2]
+    s = grad + np.swapaxes(grad, 0, 1) + lam * div * np.eye(3).reshape(3, 3, *([1] * np.ndim(x)))
+    return {c: s["xyz".index(c[0]), "xyz".index(c[1])] for c in ax.COMPONENTS}
+
+
+def _defining_integral(x, y, z, n_theta=160, n_phi=160):
+    """int over the disc of sqrt(1 - s^2) times the Cerruti field at (x - xi, y - eta, z): s = sin t
+    removes the square-root edge, Gauss–Legendre in t, the periodic trapezoid rule in the angle."""
+    t, w = np.polynomial.legendre.leggauss(n_theta)
+    t, w = (t + 1) * math.pi / 4, w * math.pi / 4
+    ang = 2 * math.pi * np.arange(n_phi) / n_phi
+    s = np.sin(t)[:, None]
+    weight = (w * np.cos(t) ** 2 * np.sin(t))[:, None] * (2 * math.pi / n_phi)
+    st = _cerruti_stress(x - s * np.cos(ang), y - s * np.sin(ang), z + 0 * s * ang, NU)
+    return {c: float(np.sum(weight * v)) for c, v in st.items()}
+
+
+@pytest.mark.parametrize("p", [(0.3, 0.2, 0.5), (-0.8, 0.5, 0.7), (1.3, -0.4, 0.6), (0.0, 0.9, 1.5)])
+def test_against_the_defining_integral(p):
+    ref = _defining_integral(*p)
+    s = sliding_unit(*p, NU)
+    scale = max(abs(v) for v in ref.values())
+    for c in ax.COMPONENTS:
+        assert abs(float(s[c]) - ref[c]) <= 1e-12 * scale, (c, float(s[c]), ref[c])
+
+
+# -- the axis -------------------------------------------------------------------------------------
+
+def _axis_xz(z):
+    """sigma_xz(0, 0, z) / q0: the Cerruti sigma_xz = -3 x^2 z / (2 pi rho^5) over rings of the
+    traction, the angle done by hand (cos^2 averages to 1/2)."""
+    f = lambda s: math.sqrt(1 - s * s) * s ** 3 * z / (s * s + z * z) ** 2.5
+    return -1.5 * quad(f, 0, 1, epsabs=0, epsrel=1e-13, limit=200, points=[z])[0]
+
+
+def _longdouble(x, y, z):
+    x, y, z = (np.asarray(v, dtype=np.longdouble) for v in (x, y, z))
+    g = _geometry(x, y, z)
+    return _sliding_cartesian(x, y, z, np.longdouble(NU), _sliding_scalars(g), g["N"])
+
+
+@pytest.mark.parametrize("r", [0.0, 1e-16, 1e-8])
+def test_near_axis_without_cancellation(r):
+    z = np.array([0.01, 0.2, 0.5, 1.0, 2.0, 5.0])
+    for phi in (0.0, 0.7, 2.5):
+        x, y = r * math.cos(phi), r * math.sin(phi)
+        s, ref = sliding_unit(x, y, z, NU), _longdouble(x, y, z)
+        for c in ax.COMPONENTS:
+            err = np.abs(s[c] - ref[c].astype(float))
+            assert np.all(err <= 1e-13 * np.maximum(np.abs(ref[c].astype(float)), 1e-300) + 1e-300), (c, r)
+        assert np.allclose(s["xz"], [_axis_xz(v) for v in z], rtol=1e-12, atol=0)
+    # the odd components are O(r): their slopes at r = 1e-16 and 1e-8 agree with r = 1e-4
+    slope = lambda rr: {c: sliding_unit(rr, 0.0, z, NU)[c] / rr for c in ("xx", "yy", "zz")}
+    if r > 0:
+        near, ref = slope(r), slope(1e-4)
+        for c in near:
+            assert np.allclose(near[c], ref[c], rtol=1e-7, atol=0)
+
+
+def test_far_field_is_cerruti():
+    """r, z ~ 1e3 ... 1e4: the point load Q = 2 pi q0 a^2 / 3 to relative O((a/R)^2)."""
+    x = np.array([1e3, 3e3, -2e3, 7e3, 1e4])
+    z = np.array([1e3, 5e3, 2e3, 1e4, 2e3])
+    y = np.array([5e2, -1e3, 4e3, 0.0, 3e3])
+    rho = np.sqrt(x * x + y * y + z * z)
+    ref = _cerruti_stress(x, y, z, NU)
+    s = sliding_unit(x, y, z, NU)
+    q = 2 * math.pi / 3
+    for c in ax.COMPONENTS:
+        scale = np.max([np.abs(ref[k]) for k in ax.COMPONENTS], axis=0) * q
+        assert np.all(np.abs(s[c] - q * ref[c]) <= 20 / rho ** 2 * scale), c
+
+
+# -- partial slip and the entry point ---------------------------------------------------------------
+
+@pytest.mark.parametrize("c", [0.0, 0.3])
+def test_partial_slip_surface_equals_surface_kernels(c):
+    """Tangential part at z = 0 and z -> 0 against the surface kernels (paraboloid R = 2, a = 0.5,
+    mu = 0.4): surface_stress(mu) - surface_stress(mu = 0); the edge rings r = a and r = c are
+    approached like sqrt(z) and left out at z > 0."""
+    R, a, mu = 2.0, 0.5, 0.4
+    r = np.array([0.0, 1e-9, 0.1, 0.25, 0.3, 0.4, 0.499, 0.5, 0.501, 0.7, 3.0])
+    x, y = r * math.cos(0.4), r * math.sin(0.4)
+    par = ax.paraboloid(R)
+    ref = {k: surface_stress(x, y, a, c, NU, mu, par)[k] - surface_stress(x, y, a, a, NU, 0.0, par)[k]
+           for k in ax.COMPONENTS}
+    scale = mu * 2 * a / (math.pi * R)
+    for z, tol, keep in ((0.0, 1e-13, r >= 0), (1e-13, 1e-9, (r != a) & (r != c))):
+        s = interior_stress_tangential(x, y, z, a, c, NU, mu, par)
+        for k in ax.COMPONENTS:
+            assert np.allclose(s[k][keep], ref[k][keep], rtol=0, atol=tol * scale), (k, z)
+
+
+def test_partial_slip_is_the_difference_of_two_sliding_fields():
+    """(I23) with its scaling: sigma_xz(z = 0) = -mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)];
+    c = a gives no tangential field; the stick-zone traction is the Cattaneo–Mindlin one."""
+    R, a, c, mu = 1.5, 0.8, 0.5, 0.3
+    p0 = 2 * a / (math.pi * R)
+    r = np.array([0.0, 0.2, 0.49, 0.6, 0.79, 0.9])
+    s = interior_stress_tangential(r, 0.0, 0.0, a, c, NU, mu, ax.paraboloid(R))
+    q = mu * p0 * (np.sqrt(np.clip(1 - r * r / a / a, 0, None)) - c / a * np.sqrt(np.clip(1 - r * r / c / c, 0, None)))
+    assert np.allclose(s["xz"], -q, rtol=1e-14, atol=1e-16)
+    z = np.linspace(0, 2, 5)
+    none = interior_stress_tangential(0.3, 0.1, z, a, a, NU, mu, ax.paraboloid(R))
+    assert all(np.all(none[k] == 0.0) for k in ax.COMPONENTS)
+    gross = interior_stress_tangential(0.3, 0.1, z, a, 0.0, NU, mu, ax.paraboloid(R))
+    unit = sliding_unit(0.3 / a, 0.1 / a, z / a, NU)
+    assert all(np.allclose(gross[k], mu * p0 * unit[k], rtol=1e-15, atol=0) for k in ax.COMPONENTS)
+
+
+def test_edge_rings_are_finite_and_continuous():
+    """The limit on the edge ring exists (I22); it is approached like sqrt(distance)."""
+    s = sliding_unit(np.array([1.0, 0.6]), np.array([0.0, 0.8]), 0.0, NU)
+    near = sliding_unit(np.array([1.0, 0.6]) * (1 + 1e-12), np.array([0.0, 0.8]) * (1 + 1e-12), 1e-14, NU)
+    for k in ax.COMPONENTS:
+        assert np.all(np.isfinite(s[k])) and np.allclose(s[k], near[k], rtol=0, atol=10 * 1e-6), k
+
+
+def test_validation():
+    par = ax.paraboloid(1.0)
+    with pytest.raises(ValueError, match="paraboloid only"):
+        interior_stress_tangential(0.0, 0.0, 1.0, 1.0, 0.0, NU, 0.3, ax.cone(0.2))
+    for bad in (dict(z=-1.0), dict(c=2.0), dict(nu=0.6), dict(mu=-0.1)):
+        args = dict(z=1.0, c=0.5, nu=NU, mu=0.3) | bad
+        with pytest.raises(ValueError):
+            interior_stress_tangential(0.0, 0.0, args["z"], 1.0, args["c"], args["nu"], args["mu"], par)
+    with pytest.raises(ValueError, match="method"):
+        interior_stress_tangential(0.0, 0.0, 1.0, 1.0, 0.0, NU, 0.3, par, method="quadrature")
