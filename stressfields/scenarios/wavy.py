@@ -65,8 +65,8 @@ PARAMETERS = (
               "from the contact centre)", units="1", units_physical="m", default=0.0, low=-1e6, high=1e6),
 )
 
-_SERIES = ("the truncated series of eqs. (10)-(12) (periodic) or (14) (non-periodic) for this 2a/lambda_1 "
-           "and harmonic count")
+_SERIES = ("the closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or the truncated Bessel "
+           "series of eq. (14) (non-periodic) for this 2a/lambda_1 and harmonic count")
 VARIABLES = (
     Variable("pressure", "contact pressure p(x) (compressive positive; 0 outside the contact)",
              units_physical="Pa", scale=PSTAR,
@@ -108,12 +108,17 @@ VARIABLES = (
                      "interpolant is not resolved. "
                      "Method auto uses the non-periodic series for a periodic pressure where this plus the "
                      "non-periodic series error is below the tolerance (validity = 3)."),
-    Variable("error_estimate", "bound on the series error of pressure, peak_pressure and max_pressure "
-             "(truncated tail + rounding)", units_physical="Pa", scale=PSTAR, dims=CASE,
-             comment="Outside the contact uz is good to about error_estimate/p* * (|x| - a) * 2 pi/lambda_1 "
-                     "* Delta_1. Where validity = 3 the pressure is instead within periodic_correction plus "
-                     "the non-periodic series error of the periodic one, together below method.rtol."),
-    Variable("converged", f"whether {_SERIES} met method.rtol", dtype="int8", dims=CASE, flag_values=(0, 1),
+    Variable("error_estimate", "upper bound of the error of pressure, peak_pressure and max_pressure (only; "
+             "not of uz): periodic, rounding of the closed form; non-periodic, truncated tail + rounding",
+             units_physical="Pa", scale=PSTAR, dims=CASE,
+             comment="In units of p* (docs/theory/wavy.md (W23), (W31)). It does not bound uz, whose scale is "
+                     "Delta_1: inside the contact uz = u_z(0) - g(x) from closed forms; outside it is good to "
+                     "about error_estimate/p* * (|x| - a) * 2 pi/lambda_1 * Delta_1 plus the gap quadrature "
+                     "(below 1e-13 Delta_1 in the tests). Where validity = 3 the pressure is instead within "
+                     "periodic_correction plus the non-periodic series error of the periodic one, together "
+                     "below method.rtol."),
+    Variable("converged", f"whether the pressure of {_SERIES} met method.rtol (error_estimate <= "
+             "method.rtol * p*)", dtype="int8", dims=CASE, flag_values=(0, 1),
              flag_meanings=("not_converged", "converged"), always=True,
              comment="0: rtol was not reached (below rounding, or the length cap as 2a/lambda_1 -> 1); the "
                      "values are the best available, good to error_estimate."),

@@ -9,6 +9,7 @@ from fractions import Fraction
 from math import comb
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -187,3 +188,85 @@ def test_nonperiodic_error_estimate_is_an_upper_bound(w, rest, rtol):
     assert np.all(err <= info["error_estimate"])
     assert np.array_equal(info["converged"], info["error_estimate"] <= rtol)
     assert np.all(err[info["converged"]] <= rtol * np.maximum(np.abs(p), 1.0)[info["converged"]])
+
+
+def _periodic_reference(t, w, dr, n):
+    """p/p* of (W30) in extended precision, with P_k(1 - 2u), u = sin^2(a/2), by the recurrence of the
+    differences D_k = P_k - P_{k-1}, (k + 1) D_{k+1} = k D_k - 2u (2k + 1) P_k (no loss as c = cos a -> 1;
+    a route independent of the cosine sum (W35) the code evaluates)."""
+    ld = np.longdouble
+    a = ld(np.pi * w)                    # the code's contact angle, exactly
+    u = np.sin(a / 2) ** 2
+    P, D = [ld(1)], ld(0)
+    for k in range(int(max(n))):
+        D = (k * D - 2 * u * (2 * k + 1) * P[k]) / (k + 1)
+        P.append(P[k] + D)
+    B = [ld(0)] * int(max(n))
+    for d, ni in zip(dr, n):
+        for j in range(int(ni)):
+            B[j] += 2 * ld(d) * int(ni) * P[int(ni) - 1 - j]
+    t = np.asarray(t, dtype=ld)
+    R = np.sqrt(np.sin(a * (1 - t) / 2) * np.sin(a * (1 + t) / 2))
+    return R * sum(b * np.cos((j + ld(0.5)) * a * t) for j, b in enumerate(B))
+
+
+def test_periodic_rounding_bound_holds():
+    """(W31) is an upper bound of |error| of p and phi (W30) with P_k by (W35): seeded profiles of up to 4
+    harmonics, n <= 100, 2a/lambda_1 from 1e-6 to 1 - 1e-7, edges included (measured ratio <= 0.12;
+    the bound with scipy's eval_legendre was exceeded 2.2-fold)."""
+    rng = np.random.default_rng(20180831)
+    worst = 0.0
+    for _ in range(60):
+        nh = rng.integers(0, 4)
+        dr = np.array([1.0, *(rng.uniform(-1, 1, nh) * 10.0 ** rng.uniform(-3, 0, nh))])
+        n = np.array([1, *rng.integers(2, 101, nh)], dtype=float)
+        w = rng.choice([10 ** rng.uniform(-6, 0), 1 - 10 ** rng.uniform(-7, -1)])
+        t = np.concatenate([rng.uniform(0, 1, 60), 1 - 10.0 ** -rng.uniform(1, 15, 12), [0.0, 1.0]])
+        p, info = wavy.pressure(t, w, dr, n, periodic=True, rtol=1e-12)
+        ref = _periodic_reference(t, w, dr, n)
+        err = np.abs(p - ref.astype(float))
+        worst = max(worst, float(err.max() / info["error_estimate"][0]))
+        inner = t < 1.0                  # phi = p/sqrt(1 - t^2) and its bound err_shape
+        phi, info_phi = wavy.pressure_shape(t[inner], w, dr, n, periodic=True, rtol=1e-12)
+        ref_phi = ref[inner] / np.sqrt((1 - t[inner].astype(np.longdouble)) * (1 + t[inner]))
+        worst = max(worst, float(np.max(np.abs(phi - ref_phi.astype(float)) / info_phi["error_estimate"])))
+        assert np.array_equal(info["converged"], info["error_estimate"] <= 1e-12)
+    assert worst <= 1.0
+
+
+@pytest.mark.parametrize("amps, wns", [([1.0], [1]), ([1.0, 0.02], [1, 11]), ([1.0, 0.02, 0.00075], [1, 11, 40]),
+                                       ([1.0, 0.1, -0.05], [1, 7, 23])])
+def test_periodic_bound_is_not_too_loose(amps, wns):
+    """The paper's profiles and moderate ripples (2 |Delta_i| n_i/Delta_1 <= 2.3) converge at rtol = 1e-12 over
+    the whole range of 2a/lambda_1, although (W31) is a worst-case bound."""
+    w = np.concatenate([np.logspace(-6, -1, 12), np.linspace(0.1, 0.99, 24), 1 - np.logspace(-7, -2, 8)])
+    _, info = wavy.peak_pressure(w, amps, wns, periodic=True, rtol=1e-12)
+    assert info["converged"].all()
+
+
+@pytest.mark.parametrize("w", [1e-5, 1e-4, 1e-3, 1e-2])
+def test_narrow_nonperiodic_contact_is_hertz(w):
+    """One harmonic g = Delta (1 - cos(2 pi x/lambda)) is, near its crest, the parabola x^2/(2R) with
+    R = lambda^2/(4 pi^2 Delta) (1 - cos y = y^2/2 - ...). Hertz line contact of half-width a (W28):
+    p = (E* a/(2R)) sqrt(1 - x^2/a^2), load per length W = pi a^2 E*/(4R), and, with the datum of (W15)
+    (kernel ln|2 pi (x - xi)/lambda|), approach delta = -(2/(pi E*)) int p(xi) ln|2 pi xi/lambda| dxi
+    = (a^2/(2R)) [ln(lambda/(pi a)) + 1/2] (int_{-1}^{1} sqrt(1 - s^2) ln|s| ds = -(pi/2)(ln 2 + 1/2)).
+    The cosine differs from the parabola by O(a^2): p by <= 0.118 (2 pi a/lambda)^2 of its peak (the
+    J_3 term of (W8)), delta and W by (2 pi a/lambda)^2/8 relatively."""
+    E_star, lam, delta = 2e11, 1e-3, 1e-6                # physical units, SI
+    R = lam ** 2 / (4 * np.pi ** 2 * delta)
+    a = w * lam / 2
+    A = 2 * np.pi * a / lam                              # a in lambda = 2 pi units
+    pstar = np.pi * E_star * delta / lam
+    t = np.linspace(-1.0, 1.0, 41)
+    p = wavy.pressure(t, w, [1.0], [1], periodic=False, rtol=1e-13)[0] * pstar
+    peak = E_star * a / (2 * R)
+    hertz = peak * np.sqrt(1 - t * t)
+    assert np.max(np.abs(p - hertz)) <= 0.12 * A * A * peak + 1e-12 * peak
+    W = wavy.mean_pressure(w, [1.0], [1], periodic=False) * pstar * lam
+    W_h = np.pi * a * a * E_star / (4 * R)
+    assert abs(W / W_h - 1) <= A * A / 8 * 1.01
+    d = wavy.approach(w, [1.0], [1], periodic=False) * delta
+    d_h = a * a / (2 * R) * (np.log(lam / (np.pi * a)) + 0.5)
+    assert abs(d / d_h - 1) <= A * A / 8 * 1.01
+    assert abs(d / d_h - 1) >= A * A / 8 * 0.5          # the O(a^2) difference is the cosine's, resolved

@@ -71,6 +71,23 @@ def approach(a, delta_ratio, n, N):
     out = np.zeros(np.broadcast(a, N).shape)
     for i in range(len(n)):
         z = a * n[i]
-        out += np.where(N > i, delta_ratio[i] * (-z * j1(z) * np.log(0.5 * a) + 1.0 - j0(z)), 0.0)
+        out += np.where(N > i, delta_ratio[i] * (-z * j1(z) * np.log(0.5 * a) + _one_minus_j0(z)), 0.0)
     return out
+
+
+def _one_minus_j0(z):
+    """1 - J_0(z), docs/theory/wavy.md (W16), without the cancellation of the difference as z -> 0
+    (relative error 4e-7 at z = 3e-5, i.e. 3e-8 of the approach at 2a/lambda_1 = 1e-5, measured against
+    the Hertz line contact): for z <= 2 the alternating series sum_{k>=1} (-1)^(k+1) (z^2/4)^k/(k!)^2,
+    terms falling at least fourfold, first term at most 1.3 times the sum; beyond, |J_0| < 0.23 and the
+    difference loses nothing."""
+    z = np.asarray(z, dtype=float)
+    q = 0.25 * z * z
+    small = q <= 1.0
+    term = np.where(small, q, 0.0)
+    total = term.copy()
+    for k in range(1, 24):          # 1/(24!)^2 ~ 1e-47: far below eps
+        term = -term * q / ((k + 1) * (k + 1))
+        total = total + term
+    return np.where(small, total, 1.0 - j0(z))
 

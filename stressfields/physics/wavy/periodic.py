@@ -13,6 +13,8 @@ datum is zero mean displacement over one period.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import scipy.fft
 from scipy.special import eval_jacobi, eval_legendre
@@ -216,19 +218,83 @@ class OutsideTable:
 #: odd Chebyshev terms used only for the magnitude scale of a contact (W32); a lower bound of the
 #: l2 norm, exact to rounding for 2a/lambda_1 <= 0.5 (where the substitution test applies)
 _MAGNITUDE_TERMS = 64
+#: unit roundoff u = eps/2; libm sin/cos are taken as good to 1 ulp (2u absolute for |cos| <= 1;
+#: measured here 0.52 ulp on 10^6 arguments up to 1000 against 80-bit values)
+_U = 0.5 * series.EPS
+#: rows of the cosine-weight matrix built at once (memory top * rows * 8 bytes)
+_BLOCK = 1 << 20
 
 
-def closed_coefficients(a, delta_ratio, n, N):
+@functools.lru_cache(maxsize=4)
+def _central(top):
+    """g_m = binom(2m, m)/4^m, m < top, each correctly rounded (exact integers, one rounded division)."""
+    g, c = [], 1
+    for m in range(top):
+        if m:
+            c = c * (2 * m) * (2 * m - 1) // (m * m)
+        g.append(c / (1 << (2 * m)))
+    return np.array(g)
+
+
+def legendre_by_cosines(a, top):
+    """P_k(cos a) for k < top (columns) and a bound of each value's rounding error, rows of a.
+
+    The positive-coefficient cosine sum (W35), P_k(cos a) = sum_m g_m g_{k-m} cos((k - 2m) a), whose
+    weights sum to 1: its error is the cosines' own (argument j a rounded) plus the summation's, about
+    (k/2 + k a) u, where the three-term recurrence of P_k(c) (scipy's eval_legendre) carries the
+    rounding of c = cos a with the factor dP_k/dc = k(k + 1)/2 at c = 1 (measured 1.2 times the
+    former bound of (W31) at n = 58).  Bound per value, u = eps/2:
+    u [sum_j G_kj |sin(j a)| j a + k/2 + 9] (cosine argument and 1 ulp, weights 3u, k/2 + 1 sums).
+    """
+    a = np.asarray(a, dtype=float).reshape(-1)
+    g = _central(top)
+    j = np.arange(top)
+    ja = j[None, :] * a[:, None]
+    cosj = np.cos(ja)
+    arg = np.abs(np.sin(ja)) * ja
+    P, E = np.empty((a.size, top)), np.empty((a.size, top))
+    rows = max(1, _BLOCK // max(top, 1))
+    for k0 in range(0, top, rows):
+        k = np.arange(k0, min(top, k0 + rows))[:, None]
+        m = np.arange(k[-1, 0] // 2 + 1)[None, :]
+        ok = 2 * m <= k
+        kk, mm = np.broadcast_arrays(k, m)
+        col = (kk - 2 * mm)[ok]
+        G = np.zeros((k.shape[0], top))
+        G[(kk - k0)[ok], col] = g[mm[ok]] * g[(kk - mm)[ok]] * np.where(col > 0, 2.0, 1.0)
+        P[:, k0:k0 + k.shape[0]] = cosj @ G.T
+        E[:, k0:k0 + k.shape[0]] = _U * (arg @ G.T + 0.5 * k[:, 0] + 9.0)
+    return P, E
+
+
+def closed_coefficients(a, delta_ratio, n, N, *, bound=False):
     """B_j (rows of a/N, j < max n_i): p/p* = R(x) sum_j B_j cos((j + 1/2) x),
-    B_j = sum_{i<N, n_i>j} 2 (Delta_i/Delta_1) n_i P_{n_i-1-j}(cos a), docs/theory/wavy.md (W30)."""
+    B_j = sum_{i<N, n_i>j} 2 (Delta_i/Delta_1) n_i P_{n_i-1-j}(cos a), docs/theory/wavy.md (W30), with
+    P_k from (W35).  bound=True also returns a bound of each B_j's rounding error (W31)."""
     a, N = np.asarray(a, dtype=float), np.asarray(N, dtype=int)
-    top = int(np.max(n[: int(np.max(N))]))
-    P = eval_legendre(np.arange(top)[None, :], np.cos(a)[:, None])
-    B = np.zeros((a.size, top))
-    for i in range(len(n)):
+    used = n[: int(np.max(N))]
+    top = int(np.max(used))
+    P, E = legendre_by_cosines(a, top)
+    B, errB = np.zeros((a.size, top)), np.zeros((a.size, top))
+    # sum over the harmonics: one product rounding each for w_i and w_i P, up to len(used) additions
+    acc = (len(used) + 2) * _U
+    for i in range(len(used)):
         ni = int(n[i])
-        B[:, :ni] += np.where(N[:, None] > i, 2.0 * delta_ratio[i] * ni * P[:, ni - 1 - np.arange(ni)], 0.0)
-    return B
+        k = ni - 1 - np.arange(ni)
+        on = N[:, None] > i
+        w = 2.0 * delta_ratio[i] * ni
+        B[:, :ni] += np.where(on, w * P[:, k], 0.0)
+        errB[:, :ni] += np.where(on, abs(w) * (E[:, k] + acc * (np.abs(P[:, k]) + E[:, k])), 0.0)
+    return (B, errB) if bound else B
+
+
+def rounding_bound(a, B, errB, K, reach):
+    """Bound of |Q_computed - Q| for |x| <= reach, rows of B (W31): the coefficients' own errors, the
+    argument of cos((j + 1/2) x) (x = a t and the product rounded: (2j + 1) x u, plus 1 ulp), one
+    product and K sums per term."""
+    j = np.arange(B.shape[1])
+    absB = np.abs(B)
+    return errB.sum(axis=1) + _U * (absB @ (2.0 * j + 1.0) * reach + absB.sum(axis=1) * (K + 4.0))
 
 
 def build_table(a_values, N_values, delta_ratio, n, *, rtol):
@@ -238,15 +304,14 @@ def build_table(a_values, N_values, delta_ratio, n, *, rtol):
         raise ValueError("rtol must be positive")
     a = np.repeat(np.asarray(a_values, dtype=float), len(N_values))
     N = np.tile(np.asarray(N_values, dtype=int), len(a_values))
-    B = closed_coefficients(a, delta_ratio, n, N)
+    B, errB = closed_coefficients(a, delta_ratio, n, N, bound=True)
     K = np.array([int(np.max(n[:k])) for k in N])
-    j = np.arange(B.shape[1]) + 0.5
-    # (W31): B_j from Legendre values good to ~2 eps each, cos((j+1/2)x) with argument rounding
-    # (j+1/2) pi eps, summation eps per term; measured max |error| / this bound <= 0.05 (tests)
-    weight = np.sum(np.abs(2.0 * delta_ratio * n)[None, :] * (N[:, None] > np.arange(len(n))[None, :]), axis=1)
-    errQ = series.EPS * (np.abs(B) @ (4.0 + np.pi * j) + 4.0 * K * weight)
-    err = np.sin(0.5 * a) * errQ                       # R <= sin(a/2)
-    err_shape = 0.5 * a * errQ                        # (a/2) sqrt(sinc sinc) <= a/2
+    errQ = rounding_bound(a, B, errB, K, a)
+    absQ = np.abs(B).sum(axis=1)
+    # p = R Q with R <= sin(a/2) good to 9u sin(a/2) (W31), one more product; phi = (a/2) sqrt(sinc
+    # s2/(1 + t)) Q with the factor <= a/2 good to 8u of itself (W31)
+    err = np.sin(0.5 * a) * (errQ + 10.0 * _U * absQ)
+    err_shape = 0.5 * a * (errQ + 9.0 * _U * absQ)
     C = coefficients(np.asarray(a_values, dtype=float), n, _MAGNITUDE_TERMS)
     w = 2.0 * delta_ratio * n
     norm = np.cumsum(np.abs(w)[None, :] * np.sqrt(np.sum(C * C, axis=-1)), axis=1)[:, np.asarray(N_values) - 1]
@@ -263,20 +328,30 @@ def q_sum(table, row, x):
     return out
 
 
+def _half_angle_sines(a, t):
+    """y1 = a(1 - t)/2 and s1 = sin y1, s2 = sin(a(1 + t)/2), each good to a few u relative: past
+    pi/2, s2 = sin a cos y1 - cos a sin y1, a sum of two non-negative terms, because sin of the
+    rounded argument near pi loses digits (relative error 1e-9 at 2a/lambda_1 = 1 - 1e-7), (W31)."""
+    y1 = 0.5 * a * (1.0 - t)
+    y2 = 0.5 * a * (1.0 + t)
+    s2 = np.where(y2 <= 0.5 * np.pi, np.sin(y2), np.sin(a) * np.cos(y1) - np.cos(a) * np.sin(y1))
+    return y1, np.sin(y1), s2
+
+
 def closed_pressure(table, row, t):
     """p/p* = R Q at |x|/a = t in [0, 1]; R = sqrt(sin(a(1-t)/2) sin(a(1+t)/2)) without
     cancellation at the edge, docs/theory/wavy.md (W30)."""
     a = table.a[row]
-    R = np.sqrt(np.sin(0.5 * a * (1.0 - t)) * np.sin(0.5 * a * (1.0 + t)))
-    return R * q_sum(table, row, a * t)
+    _, s1, s2 = _half_angle_sines(a, t)
+    return np.sqrt(s1 * s2) * q_sum(table, row, a * t)
 
 
 def closed_shape(table, row, t):
-    """phi = p/sqrt(1 - t^2) / p* = (a/2) sqrt(sinc(a(1-t)/2) sinc(a(1+t)/2)) Q(a t), finite at the
-    edge, where it is the edge coefficient (1/2) sqrt(a sin a) Q(a), docs/theory/wavy.md (W30)."""
+    """phi = p/sqrt(1 - t^2) / p* = sqrt((a/2) sinc(a(1-t)/2) sin(a(1+t)/2)/(1 + t)) Q(a t), finite at
+    the edge, where it is the edge coefficient (1/2) sqrt(a sin a) Q(a), docs/theory/wavy.md (W30)."""
     a = table.a[row]
-    sinc = lambda u: np.sinc(u / np.pi)
-    return 0.5 * a * np.sqrt(sinc(0.5 * a * (1.0 - t)) * sinc(0.5 * a * (1.0 + t))) * q_sum(table, row, a * t)
+    y1, _, s2 = _half_angle_sines(a, t)
+    return np.sqrt(0.5 * a * np.sinc(y1 / np.pi) * s2 / (1.0 + t)) * q_sum(table, row, a * t)
 
 
 def closed_peak(table, rows):
