@@ -14,7 +14,7 @@ import xarray as xr
 from dask.array import PerformanceWarning
 
 from . import cf
-from .recipe import Recipe
+from .recipe import Recipe, RecipeError, chunk_problems
 from .scenarios.base import ARRAY
 
 #: points per chunk: the measured sweet spot of threaded dask on this kind of machine (~8 MB)
@@ -25,7 +25,9 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
     scen = recipe.scenario
     physical = recipe.physical
     sizes = recipe.shape
-    chunking = default_chunks(sizes, {**recipe.chunks, **(chunks or {})})
+    requested = {**recipe.chunks, **(chunks or {})}
+    chunking = default_chunks(sizes, requested)
+    check_chunks(sizes, requested, chunking)
 
     coords: dict[str, xr.Variable] = {}
     fixed: dict = {}
@@ -69,6 +71,16 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
         if par.choices and par.name in recipe.values and par.name not in recipe.swept:
             ds.attrs[f"stressfields_{par.name}"] = recipe.values[par.name]
     return ds
+
+
+def check_chunks(sizes: dict[str, int], requested: dict[str, int], chunking: dict[str, int]) -> None:
+    """Refuse, before any graph is built, a requested chunking of more than MAX_CHUNKS chunks.
+
+    The default chunking (~1e6 points a chunk) is never refused: it is the least a sweep needs.
+    """
+    if not requested or chunk_problems(sizes, chunking, "") == [] or chunking == default_chunks(sizes, {}):
+        return
+    raise RecipeError(chunk_problems(sizes, chunking, "chunks"), "the chunking")
 
 
 def default_chunks(sizes: dict[str, int], requested: dict[str, int]) -> dict[str, int]:

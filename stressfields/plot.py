@@ -7,7 +7,9 @@
     hue = "mu"               # one curve per value (line plots)
     variables = ["sigma_xx", "dpdz"]   # one panel each
     ylim = [-20.0, 20.0]     # optional vertical range of line plots
-Other dimensions are held at their first value.
+Other dimensions are held at their first value. recipe.py checks the table; every table it
+accepts is drawn, and so is a recipe without one (a recipe with nothing swept gets its values as
+text).
 """
 from __future__ import annotations
 
@@ -16,8 +18,17 @@ from pathlib import Path
 
 import xarray as xr
 
+from .recipe import plot_along
 
-def quicklook(path: str | Path, recipe) -> Path:
+#: at most this many panels (3 columns)
+MAX_PANELS = 6
+
+
+def require_matplotlib():
+    """matplotlib.pyplot on the Agg backend, or an ImportError saying how to install it.
+
+    Call it before any work when a plot is asked for, so a missing library costs nothing.
+    """
     try:
         import matplotlib
 
@@ -25,51 +36,84 @@ def quicklook(path: str | Path, recipe) -> Path:
         import matplotlib.pyplot as plt
     except ImportError:
         raise ImportError("quick-look PNGs need matplotlib: pip install 'stressfields[plot]'") from None
-    spec = recipe.plot
+    return plt
+
+
+def quicklook(path: str | Path, recipe) -> Path:
+    plt = require_matplotlib()
     path = Path(path)
     with xr.open_dataset(path) as ds:
-        names = [v for v in spec.get("variables", recipe.variables) if v in ds and ds[v].ndim][:6]
-        kind = spec.get("kind", "map" if {"x", "y"} <= set(recipe.swept) else "line")
-        xdim = spec.get("x", recipe.swept[-1] if recipe.swept else None)
-        hue = spec.get("hue")
-        marker = spec.get("marker")
-        ncol = min(3, max(1, len(names)))
-        nrow = -(-len(names) // ncol)
-        fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol + 1.0, 3.8 * nrow + 0.4), squeeze=False)
-        for ax, name in zip(axes.flat, names):
-            da = ds[name]
-            if kind == "line" and xdim in ds.data_vars:
-                # x may be another variable (e.g. force against displacement): plot one against the other
-                da = da.assign_coords({xdim: ds[xdim]})
-            keep = set(ds[xdim].dims) | {hue} if kind == "line" else {"x", "y"}
-            da = da.isel({d: 0 for d in da.dims if d not in keep})
-            label = _label(da)
-            if kind == "map":
-                da.transpose("y", "x").plot(ax=ax, robust=True, cbar_kwargs={"label": label})
-                ax.set_aspect("equal")
-                ax.set_ylabel(_label(ds["y"]))
-            elif hue in da.dims:
-                names_ = ds[f"{hue}_name"].values if f"{hue}_name" in ds else None
-                for i, value in enumerate(da[hue].values):
-                    text = names_[i] if names_ is not None else f"{hue} = {value:g}"
-                    da.isel({hue: i}).plot.line(ax=ax, x=xdim, label=text, lw=1, marker=marker)
-                ax.legend(fontsize=7)
-                ax.set_ylabel(label)
-            else:
-                da.plot.line(ax=ax, x=xdim, lw=1, marker=marker)
-                ax.set_ylabel(label)
-            ax.set_xlabel(_label(ds[xdim if kind == "line" else "x"]))
-            ax.set_title(textwrap.fill(da.attrs.get("long_name", name), 60), fontsize=7)
-            if "ylim" in spec and kind == "line":
-                ax.set_ylim(*spec["ylim"])
-        for ax in list(axes.flat)[len(names):]:
-            ax.set_visible(False)
+        fig = _figure(plt, ds, recipe)
         fig.suptitle(recipe.title, fontsize=9, wrap=True)
         fig.tight_layout()
         png = path.with_suffix(".png")
         fig.savefig(png, dpi=90)
         plt.close(fig)
     return png
+
+
+def _figure(plt, ds: xr.Dataset, recipe):
+    spec, swept = recipe.plot, recipe.swept
+    kind = spec.get("kind", "map" if {"x", "y"} <= set(swept) else "line")
+    xname = spec.get("x", "x" if kind == "map" else (swept[-1] if swept else None))
+    hue = spec.get("hue")
+    dims = {n: ds[n].dims for n in ds.data_vars}
+    along = plot_along(xname, hue, swept, dims) if kind == "line" and xname else None
+    need = {"x", "y"} if kind == "map" else {along}
+    names = [n for n in spec.get("variables", recipe.variables)
+             if n in ds.data_vars and need <= set(ds[n].dims)][:MAX_PANELS]
+    if not names:
+        return _text_figure(plt, ds, recipe)
+    ncol = min(3, len(names))
+    nrow = -(-len(names) // ncol)
+    fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol + 1.0, 3.8 * nrow + 0.4), squeeze=False)
+    for ax, name in zip(axes.flat, names):
+        if kind == "map":
+            _map(ax, ds, name)
+        else:
+            _lines(ax, ds, name, xname, along, hue, spec.get("marker"))
+            if "ylim" in spec:
+                ax.set_ylim(*spec["ylim"])
+        ax.set_title(textwrap.fill(ds[name].attrs.get("long_name", name), 60), fontsize=7)
+    for ax in list(axes.flat)[len(names):]:
+        ax.set_visible(False)
+    return fig
+
+
+def _map(ax, ds, name):
+    da = ds[name]
+    da = da.isel({d: 0 for d in da.dims if d not in ("x", "y")})
+    da.transpose("y", "x").plot(ax=ax, robust=True, cbar_kwargs={"label": _label(da)})
+    ax.set_aspect("equal")
+    ax.set_xlabel(_label(ds["x"]))
+    ax.set_ylabel(_label(ds["y"]))
+
+
+def _lines(ax, ds, name, xname, along, hue, marker):
+    """One curve of `name` against `xname` along `along` per value of `hue`; other dims at index 0."""
+    y, x = xr.broadcast(ds[name], ds[xname])
+    hold = {d: 0 for d in y.dims if d not in (along, hue)}
+    y, x = y.isel(hold), x.isel(hold)
+    if hue in y.dims:
+        texts = ds[f"{hue}_name"].values if f"{hue}_name" in ds else [f"{hue} = {v:g}" for v in ds[hue].values]
+        for i, text in enumerate(texts):
+            ax.plot(x.isel({hue: i}).values, y.isel({hue: i}).values, lw=1, marker=marker, label=text)
+        ax.legend(fontsize=7)
+    else:
+        ax.plot(x.values, y.values, lw=1, marker=marker)
+    ax.set_xlabel(_label(ds[xname]))
+    ax.set_ylabel(_label(ds[name]))
+
+
+def _text_figure(plt, ds, recipe):
+    """Nothing varies along a line: the values as text."""
+    fig, ax = plt.subplots(figsize=(6.0, 4.0))
+    ax.axis("off")
+    lines = [f"{n} = {ds[n].values.ravel()[0]!r}" + (" ..." if ds[n].size > 1 else "")
+             for n in list(ds.data_vars)[:20]]
+    ax.text(0.0, 1.0, "\n".join(lines) or "no variables", va="top", family="monospace", fontsize=7,
+            transform=ax.transAxes)
+    return fig
 
 
 def _label(da) -> str:

@@ -124,3 +124,30 @@ def test_toml_file_errors(tmp_path):
         load(bad)
     with pytest.raises(RecipeError, match="cannot read"):
         load(tmp_path / "missing.toml")
+
+
+def test_sweep_sizes_are_checked_from_the_specification():
+    import time
+
+    start = time.perf_counter()
+    msg = problems(recipe(x={"start": -1.0, "stop": 1.0, "num": 100_000_000}))
+    assert "x: a sweep of 100,000,000 values; at most 10,000,000" in msg
+    msg = problems(recipe(x={"start": -1.0, "stop": 1.0, "num": 9_000_000},
+                          mu={"start": 0.0, "stop": 1.0, "num": 9_000}))
+    assert "at most 1e+10 are allowed" in msg and "mu=9,000" in msg
+    assert time.perf_counter() - start < 5      # nothing was expanded (was 125 s and 7.3 GB)
+
+
+def test_unsorted_sweeps_and_bad_tables_are_named():
+    assert "goes both ways (0.3, 0.0, 0.1)" in problems(recipe(mu=[0.3, 0.0, 0.1]))
+    assert "scenario = ['conical'] is unknown" in problems({"scenario": ["conical"]})
+    assert "profile_r has 1,001 values; at most 1,000" in problems(
+        {"scenario": "axisymmetric", "parameters": {"x": [0.5], "profile": "tabulated",
+                                                    "profile_r": [0.0] * 1001, "profile_f": [0.0] * 1001}})
+    assert "plot.x = 'nope'" in problems({**BASE, "plot": {"x": "nope"}})
+    assert "plot.hue = ['a']" in problems({**BASE, "plot": {"hue": ["a"]}})
+    assert "needs x and y swept" in problems({**BASE, "plot": {"kind": "map"}})
+    assert "needs a swept parameter" in problems({"scenario": "conical", "parameters": {"x": 0.5},
+                                                  "plot": {"kind": "line"}})
+    assert "output.chunks x=1 makes 200,000 chunks" in problems(
+        {**BASE, "parameters": {"x": {"start": -1.0, "stop": 1.0, "num": 200_000}}, "output": {"chunks": {"x": 1}}})

@@ -13,6 +13,10 @@ import numpy as np
 
 #: Values a parameter may take.
 FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
+#: default size limit of ARRAY parameters: the costliest users grow with the square of the size
+#: (a tabulated axisymmetric profile on 100 points: 0.18 s at 100 samples, 4.5 s at 1000, 17.6 s
+#: at 2000; a history on 10 points: 0.17 s at 10 steps, 4.2 s at 100)
+MAX_ARRAY_SIZE = 1000
 
 
 class Options(TypedDict):
@@ -65,6 +69,13 @@ class Parameter:
     mode: str | None = None
     #: only meaningful when another parameter has one of these values, e.g. {"profile": ("power_law",)}
     when: Mapping[str, tuple] = field(default_factory=dict)
+    #: ARRAY parameters: the most values accepted (None: MAX_ARRAY_SIZE)
+    max_size: int | None = None
+
+    @property
+    def size_limit(self) -> int:
+        """The most values an ARRAY parameter accepts, checked before anything is computed."""
+        return MAX_ARRAY_SIZE if self.max_size is None else self.max_size
 
     def units_in(self, physical: bool) -> str:
         return self.units_physical if (physical and self.units_physical) else self.units
@@ -78,7 +89,7 @@ class Parameter:
         if self.choices:
             return "one of " + ", ".join(repr(c) for c in self.choices)
         if self.kind == ARRAY:
-            return "an array of finite numbers"
+            return f"an array of at most {self.size_limit} finite numbers"
         lo = "(" if self.low_open else "["
         hi = ")" if self.high_open else "]"
         low = "-inf" if self.low is None else _fmt(self.low)
@@ -98,7 +109,10 @@ class Parameter:
             return f"must be {self.allowed()}, got a {type(value).__name__}"
         if self.kind == INT and (not float(value).is_integer() or abs(value) > 2 ** 31 - 1):
             return f"must be {self.allowed()} (a 32-bit integer)"
-        v = float(value)
+        try:
+            v = float(value)
+        except OverflowError:       # an integer beyond the float range
+            v = math.inf
         if not math.isfinite(v):
             return f"must be finite ({self.allowed()})"
         if self.low is not None and (v < self.low or (self.low_open and v == self.low)):
@@ -106,6 +120,24 @@ class Parameter:
         if self.high is not None and (v > self.high or (self.high_open and v == self.high)):
             return f"must be {self.allowed()}"
         return None
+
+    def check_many(self, values: np.ndarray) -> tuple[Any, str] | None:
+        """The first value of a numeric sweep that is not allowed and why, or None.
+
+        Vectorised: a 1e7-value sweep is checked in about 0.1 s (one value at a time: ~20 s).
+        """
+        v = np.asarray(values, dtype=np.float64)
+        bad = ~np.isfinite(v)
+        if self.kind == INT:
+            bad |= (v != np.round(v)) | (np.abs(v) > 2 ** 31 - 1)
+        if self.low is not None:
+            bad |= (v <= self.low) if self.low_open else (v < self.low)
+        if self.high is not None:
+            bad |= (v >= self.high) if self.high_open else (v > self.high)
+        if not bad.any():
+            return None
+        first = v[int(np.argmax(bad))].item()
+        return first, self.check(first) or f"must be {self.allowed()}"
 
 
 @dataclass(frozen=True)
