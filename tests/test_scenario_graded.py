@@ -290,3 +290,14 @@ def test_control_flag_coordinate_round_trips_through_netcdf(tmp_path, capsys):
         np.testing.assert_allclose(ratio.sel(control=1), -(1 - ds.k) * (5 + 3 * ds.k) / (2 * (3 + ds.k)), rtol=1e-12)
     assert cli.main(["describe", "graded_adhesive"]) == 0
     assert "fixed_grips" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("r, message", [
+    ([0, 1e-300, 2e-300, 3e-300, 0.5, 1.0, 1.2], "below 1e-12 of its span"),    # the quadrature broke here
+    (list(np.linspace(0.0, 1.2, 101)), "at most 100 are allowed"),            # cost ~ samples^2
+])
+def test_tabulated_tables_refused_before_work(r, message):
+    f = [x + x * x for x in r]
+    with pytest.raises(RecipeError, match=message):
+        sf.generate({"scenario": "graded_normal", "parameters": {
+            "profile": "tabulated", "profile_r": r, "profile_f": f, "E0": 1e9, "k": 0.5, "a": 1.0, "r": [0.0]}})

@@ -221,5 +221,24 @@ class Scenario:
         return tuple(v for v in self.variables if v.mode in (None, mode))
 
 
+#: the smallest step of a tabulated profile, relative to its span: the graded quadrature breaks
+#: between 1e-100 and 1e-200 and the axisymmetric table construction stalls at 1e-300 (measured);
+#: a step below 1e-12 of the span carries no geometry a contact resolves
+MIN_TABLE_STEP = 1e-12
+
+
+def table_step_problem(name: str, r) -> str | None:
+    """Why the radii ``r`` of a tabulated profile are spaced too finely, or None."""
+    r = np.asarray(r, dtype=float)
+    if r.size < 2 or not np.all(np.isfinite(r)) or r[-1] <= r[0]:
+        return None
+    step = float(np.min(np.diff(r)))
+    span = float(r[-1] - r[0])
+    if 0.0 < step < MIN_TABLE_STEP * span:
+        return (f"{name} has a step of {step:.3g}, below {MIN_TABLE_STEP:g} of its span {span:.6g}; "
+                "merge samples closer than that")
+    return None
+
+
 def _fmt(v: float) -> str:
     return repr(int(v)) if float(v).is_integer() and abs(v) < 1e7 else f"{float(v):.10g}"
