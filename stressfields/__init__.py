@@ -2,18 +2,44 @@
 
     import stressfields as sf
     ds = sf.generate("recipes/cone_figures.toml")   # or a dict with the same keys; lazy xr.Dataset
-    sf.write(ds, "cone.nc")                         # atomic write (.nc NetCDF, .zarr Zarr; parts=, resume=)
+    sf.write(ds, "cone.nc")                         # atomic write (.nc NetCDF, .zarr Zarr; parts=, resume=;
+                                                    # dtype="float32", compression=4, nonfinite="nan")
+    sf.open_dataset("cone.nc")                      # reopen lazily, choice dimensions labelled by name
     sf.estimate("recipes/cone_figures.toml")        # dimensions, points, bytes, seconds before running
     sf.scenarios()                                  # names with one-line descriptions
+
+The names are imported on first use: xarray imports this package to list its backend
+(``engine="stressfields"``) whenever it opens a file, and that must not load the physics.
 """
 from __future__ import annotations
 
+import importlib
+
 __version__ = "0.1.0"
 
-from .api import describe, estimate, generate, scenarios  # noqa: E402
 from .errors import OutputError  # noqa: E402
-from .recipe import RecipeError  # noqa: E402
-from .writers import export, to_netcdf, write  # noqa: E402
 
-__all__ = ["generate", "write", "to_netcdf", "export", "estimate", "scenarios", "describe", "RecipeError",
-           "OutputError", "__version__"]
+#: public name -> the module that defines it
+_LAZY = {"generate": "api", "estimate": "api", "scenarios": "api", "describe": "api", "RecipeError": "recipe",
+         "write": "writers", "to_netcdf": "writers", "export": "writers", "output_options": "writers",
+         "open_dataset": "reading"}
+
+__all__ = ["generate", "write", "to_netcdf", "export", "open_dataset", "output_options", "estimate", "scenarios",
+           "describe", "RecipeError", "OutputError", "__version__"]
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    try:
+        return importlib.import_module(f".{name}", __name__)     # sf.writers, sf.cli, ...
+    except ModuleNotFoundError as exc:
+        if exc.name != f"{__name__}.{name}":
+            raise
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
+
+
+def __dir__():
+    return sorted([*globals(), *_LAZY])

@@ -11,10 +11,10 @@ from pathlib import Path
 
 from . import __version__
 from .api import describe, scenarios
-from .build import build, estimate
+from .build import build, check_chunks, default_chunks, estimate
 from .errors import OutputError
 from .recipe import RecipeError, load
-from .writers import check_name, check_target, export, format_for, write
+from .writers import DTYPES, NONFINITE, check_name, check_target, export, format_for, write
 
 LOCAL_SCHEDULERS = ("threads", "synchronous", "processes")
 #: sweeps larger than this are written in resumable parts
@@ -102,6 +102,18 @@ def _parser() -> argparse.ArgumentParser:
                      "(OUT.nc.parts/); implies writing in parts")
     run.add_argument("--parts", action="store_true", help="write in resumable parts along the first dimension "
                      f"(automatic above {PARTS_ABOVE:.0e} points)")
+    run.add_argument("--dtype", choices=DTYPES, default=None,
+                     help="storage of the float fields (overrides the recipe's output.dtype): float64 (default, "
+                     "exact) or float32 (half the size; adds a "
+                     "relative rounding error of 6e-8, noted in each field's stressfields_accuracy)")
+    run.add_argument("--compression", type=int, choices=range(10), metavar="0-9", default=None,
+                     help="compress at this level: zlib with shuffling (NetCDF), Blosc/zstd (Zarr); 0 none "
+                     "(default: none for NetCDF, zarr's default compressor for Zarr)")
+    run.add_argument("--nonfinite", choices=NONFINITE, default=None,
+                     help="+-inf and NaN at singular points (overrides the recipe's output.nonfinite): keep "
+                     "(default), nan (+-inf -> NaN), or fill (both "
+                     "stored as the variable's _FillValue, read back as missing); the validity flags always "
+                     "say why")
     run.add_argument("--dry-run", action="store_true", help="print dimensions, points, output size and an "
                      "estimated time (from a small sample), and write nothing")
     run.set_defaults(func=_run)
@@ -155,6 +167,8 @@ def _hash(args) -> int:
     for path in args.files:
         if not path.exists():
             raise UsageError(f"{path}: no such file")
+        if not (path.is_file() or path.is_dir()):      # a FIFO blocks forever, a device reads forever
+            raise UsageError(f"{path}: not a regular file or a Zarr store")
         try:
             digest, stored = file_hash(path)
         except Exception as exc:      # any reader's failure on a damaged or foreign file
@@ -198,6 +212,8 @@ def _run(args) -> int:
         if bad:
             raise UsageError(f"--chunks: {', '.join(sorted(bad))} is not a swept dimension of {path} "
                              f"(swept: {', '.join(recipe.swept) or 'none'})")
+        wanted = {**recipe.chunks, **chunks}
+        check_chunks(recipe.shape, wanted, default_chunks(recipe.shape, wanted))   # task count, before any work
         target = args.output or args.out_dir / f"{path.stem}.nc"
         if args.dry_run:
             pass
@@ -228,11 +244,12 @@ def _run(args) -> int:
                 dims = " x ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "scalar"
                 print(f"{path} -> {target}  [{recipe.scenario.name}: {dims}, "
                       f"{len(ds.data_vars)} variables]", file=sys.stderr)
-            show = not args.quiet and client is None
             parts = args.parts or (recipe.size > PARTS_ABOVE and format_for(target).resumable)
             try:
-                write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=show,
-                      scheduler=scheduler)
+                given = {"dtype": args.dtype, "compression": args.compression, "nonfinite": args.nonfinite}
+                storage = {**recipe.storage, **{k: v for k, v in given.items() if v is not None}}
+                write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=not args.quiet,
+                      scheduler=scheduler, **storage)
             except Exception as exc:
                 if client is None or not _cluster_failure(exc, client):
                     raise

@@ -2,9 +2,14 @@
 
 Lazy NetCDF writes are not byte-reproducible (HDF5 places chunks in arrival order), so the
 reproducibility contract is a SHA-256 over, for every variable in name order: its name, dims,
-dtype, shape, little-endian values, and its attributes; plus the global attributes except
-`history` (a timestamp) and the hash itself. Same recipe, same environment: same hash, whatever
-the chunking or the scheduler.
+dtype, shape, little-endian values, and its attributes with their stored types (an int8
+``flag_values`` is not an int64 one); plus the global attributes except `history` (a timestamp) and
+the hash itself. Strings hash alike whatever array type holds them (NetCDF gives Python objects,
+Zarr NumPy's StringDType). Same recipe, same environment: same hash, whatever the chunking or the
+scheduler.
+
+Files written before attribute types were hashed carry the hash without them (``legacy``);
+`file_hash` accepts that one when the stored hash is it, so they still verify.
 """
 from __future__ import annotations
 
@@ -23,21 +28,24 @@ _SLICE_BYTES = 64 * 2 ** 20
 _READ_BYTES = 8 * 2 ** 20
 
 
-def content_hash(ds: xr.Dataset) -> str:
+def content_hash(ds: xr.Dataset, legacy: bool = False) -> str:
     h = hashlib.sha256()
-    attrs = {k: _plain(v) for k, v in sorted(ds.attrs.items()) if k not in _SKIP_GLOBAL}
+    attr = _plain if legacy else _typed
+    attrs = {k: attr(v) for k, v in sorted(ds.attrs.items()) if k not in _SKIP_GLOBAL}
     h.update(json.dumps(attrs, sort_keys=True).encode())
-    for item in _prefetched(_stream(ds)):
+    for item in _prefetched(_stream(ds, legacy)):
         h.update(item)
     return h.hexdigest()
 
 
-def _stream(ds: xr.Dataset):
+def _stream(ds: xr.Dataset, legacy: bool = False):
     """What is hashed, in order: per variable (by name) a JSON head, then a reader per value slab."""
+    attr = _plain if legacy else _typed
     for name in sorted(map(str, ds.variables)):
         var = ds.variables[name]
-        head = {"name": name, "dims": list(var.dims), "dtype": str(var.dtype), "shape": list(var.shape),
-                "attrs": {k: _plain(v) for k, v in sorted(var.attrs.items())}}
+        dtype = str(var.dtype) if legacy or var.dtype.kind not in "OUT" else "string"
+        head = {"name": name, "dims": list(var.dims), "dtype": dtype, "shape": list(var.shape),
+                "attrs": {k: attr(v) for k, v in sorted(var.attrs.items())}}
         yield lambda head=head: json.dumps(head, sort_keys=True).encode()
         for index in slabs(var.shape, var.dtype.itemsize, _READ_BYTES):
             yield lambda var=var, index=index: _bytes(np.asarray(var[index].values))
@@ -64,7 +72,10 @@ def file_hash(path: str | Path) -> tuple[str, str | None]:
     from .writers import format_for
 
     with format_for(path).read(path, raw=True) as ds:
-        return content_hash(ds), ds.attrs.get(ATTR)
+        digest, stored = content_hash(ds), ds.attrs.get(ATTR)
+        if stored is not None and stored != digest and content_hash(ds, legacy=True) == stored:
+            return stored, stored       # written before attribute types were hashed, and intact
+        return digest, stored
 
 
 def verify(path: str | Path) -> str:
@@ -112,9 +123,17 @@ def slabs(shape: tuple[int, ...], itemsize: int, limit: int = _SLICE_BYTES):
 
 
 def _bytes(values: np.ndarray) -> bytes:
-    if values.dtype.kind in "OUS":
+    if values.dtype.kind in "OUST":
         return json.dumps([str(v) for v in values.ravel().tolist()]).encode()
     return np.ascontiguousarray(values, dtype=values.dtype.newbyteorder("<")).tobytes()
+
+
+def _typed(value):
+    """An attribute with its stored type: NumPy values (what NetCDF gives) name their dtype; text and
+    the plain JSON values of Zarr stay as they are."""
+    if isinstance(value, (np.ndarray, np.generic)) and value.dtype.kind not in "OUST":
+        return {"dtype": str(value.dtype), "value": _plain(value)}
+    return _plain(value)
 
 
 def _plain(value):

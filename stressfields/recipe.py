@@ -32,7 +32,7 @@ import re
 import reprlib
 import stat
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -40,9 +40,10 @@ import numpy as np
 
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
+from .writers import output_option_problems
 
 TOP_KEYS = ("scenario", "title", "parameters", "output", "method", "plot")
-OUTPUT_KEYS = ("variables", "chunks")
+OUTPUT_KEYS = ("variables", "chunks", "dtype", "compression", "nonfinite")
 METHOD_KEYS = ("method", "rtol")
 PLOT_KEYS = ("x", "variables", "hue", "kind", "ylim", "marker")
 PLOT_KINDS = ("line", "map")
@@ -100,6 +101,8 @@ class Recipe:
     text: str                       # the recipe as given (TOML text, or canonical JSON of a dict)
     canonical: str                  # canonical JSON of the normalised recipe
     plot: dict
+    #: how values are stored ([output] dtype, compression, nonfinite; see writers.OutputOptions)
+    storage: dict = field(default_factory=dict)
 
     @property
     def sha256(self) -> str:
@@ -257,6 +260,8 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     swept = tuple(p.name for p in scen.parameters if isinstance(values.get(p.name), np.ndarray))
     variables = _variables(scen, output.get("variables"), physical, problems)
     chunks = _chunks(output.get("chunks", {}), swept, problems)
+    storage = {k: output[k] for k in ("dtype", "compression", "nonfinite") if k in output}
+    problems += [f"output.{p}" for p in output_option_problems(**storage)]
     if not problems:
         problems += chunk_problems({s: len(values[s]) for s in swept}, chunks, "output.chunks")
     method, rtol = _method(scen, method_t, problems)
@@ -274,9 +279,11 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
         "output": {"variables": list(variables), "chunks": dict(sorted(chunks.items()))},
         "method": {"method": method, "rtol": rtol},
     }
+    if storage:                     # only when given: recipes without them keep their hash
+        canonical_dict["output"].update(sorted(storage.items()))
     canonical = json.dumps(canonical_dict, sort_keys=True, separators=(",", ":"))
     return Recipe(scen, values, swept, physical, variables, chunks, method, rtol, title,
-                  text if text is not None else canonical, canonical, dict(plot))
+                  text if text is not None else canonical, canonical, dict(plot), storage)
 
 
 def _table(data: dict, key: str, problems: list[str]) -> dict:

@@ -1,13 +1,22 @@
 """Zarr output: on a dask.distributed cluster every worker writes its own chunk-aligned region and
 nothing passes through the client. The store is built beside the target under a name of its own
 (``.NAME.HOST-PID.RANDOM.partial``, see `netcdf.temporary`) and renamed when complete, with its
-content hash in the group attributes."""
+content hash in the group attributes.
+
+Zarr keeps attributes as JSON, which has no integer widths and no order of arrays, so the store
+also records the order of the variables (``stressfields_variables``), and `read` gives the
+CF attributes that must share their variable's type (``flag_values``, ...) that type again: an
+export to NetCDF is then the file a direct NetCDF run writes.
+"""
 from __future__ import annotations
 
 import os
 import shutil
+import warnings
+from contextlib import contextmanager
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from .errors import OutputError
@@ -30,16 +39,16 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     target = Path(target)
     clean_stale(target)
     partial = temporary(target, ".partial")
-    encoding = {name: {"chunks": tuple(int(c[0]) for c in var.chunks)} for name, var in ds.variables.items()
-                if var.chunks and var.ndim}
+    ds = ds.assign_attrs({ORDER_ATTR: [str(name) for name in ds.variables]})
     try:
-        delayed = ds.to_zarr(partial, mode="w", encoding=encoding, compute=False, consolidated=True)
-        compute(delayed, progress=progress, scheduler=scheduler)
-        with read(partial, raw=True) as written:
-            digest = content_hash(written)
-        group = zarr.open_group(partial, mode="r+")
-        group.attrs[ATTR] = digest
-        zarr.consolidate_metadata(partial)
+        with quiet():
+            delayed = ds.to_zarr(partial, mode="w", encoding=_encoding(ds), compute=False, consolidated=True)
+            compute(delayed, progress=progress, scheduler=scheduler)
+            with read(partial, raw=True) as written:
+                digest = content_hash(written)
+            group = zarr.open_group(partial, mode="r+")
+            group.attrs[ATTR] = digest
+            zarr.consolidate_metadata(partial)
         _publish(partial, target, overwrite)
     except OutputError:
         shutil.rmtree(partial, ignore_errors=True)
@@ -51,6 +60,57 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
         shutil.rmtree(partial, ignore_errors=True)
         raise
     return target
+
+
+#: the group attribute listing the variables in the dataset's order
+ORDER_ATTR = "stressfields_variables"
+#: CF attributes that have the type of their variable (CF 1.8, 2.5.1 and 3.5)
+TYPED_ATTRS = ("flag_values", "flag_masks", "valid_min", "valid_max", "valid_range", "actual_range",
+               "missing_value")
+
+
+def _encoding(ds: xr.Dataset) -> dict:
+    """Chunks as dask's (each worker writes whole chunks of its own); the compressor from the
+    output options (`writers.OutputOptions`): zarr's default (zstd) unless a level is given, none
+    at 0, Blosc/zstd with byte shuffling at 1-9; `_FillValue` for the ``fill`` option."""
+    from zarr.codecs import BloscCodec, BloscShuffle
+
+    from .netcdf import _FILL
+    from .writers import OutputOptions
+
+    options = OutputOptions.from_attrs(ds.attrs)
+    encoding = {}
+    for name, var in ds.variables.items():
+        e: dict = {}
+        if var.chunks and var.ndim:
+            e["chunks"] = tuple(int(c[0]) for c in var.chunks)
+        if options.compression == 0:
+            e["compressors"] = None
+        elif options.compression is not None and var.dtype != object:
+            e["compressors"] = (BloscCodec(cname="zstd", clevel=options.compression, shuffle=BloscShuffle.shuffle),)
+        if options.nonfinite == "fill" and var.dtype.kind == "f" and name not in ds.coords:
+            e["_FillValue"] = var.dtype.type(_FILL[var.dtype.itemsize])
+        encoding[name] = e
+    return encoding
+
+
+@contextmanager
+def quiet():
+    """Without zarr's note that consolidated metadata is not (yet) in the Zarr 3 specification: the
+    package writes and reads it on purpose (one read of the metadata instead of one per array), and
+    the note would show on every command."""
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message="Consolidated metadata", category=UserWarning)
+        yield
+
+
+def _ordered(ds: xr.Dataset, order: list[str]) -> xr.Dataset:
+    """``ds`` with its variables in ``order`` (a dataset keeps the order in which they were added)."""
+    out = xr.Dataset(attrs=ds.attrs)
+    for name in order:
+        item = {name: ds.variables[name]}
+        out = out.assign_coords(item) if name in ds.coords else out.assign(item)
+    return out
 
 
 def _publish(partial: Path, target: Path, overwrite: bool) -> None:
@@ -69,9 +129,20 @@ def _publish(partial: Path, target: Path, overwrite: bool) -> None:
     shutil.rmtree(old, ignore_errors=True)
 
 
-def read(path, raw: bool = False) -> xr.Dataset:
-    """The store as a dataset: decoded, or ``raw`` (stored values and attributes, for hashing)."""
+def read(path, raw: bool = False, **kw) -> xr.Dataset:
+    """The store as a dataset: decoded (``kw`` as for `xr.open_zarr`; the variables in their written
+    order, typed CF attributes of their variable's type), or ``raw`` (stored values and attributes,
+    for hashing)."""
     _zarr()
-    if raw:
-        return xr.open_zarr(path, decode_cf=False, mask_and_scale=False, consolidated=True)
-    return xr.open_zarr(path, consolidated=True)
+    with quiet():
+        if raw:
+            return xr.open_zarr(path, decode_cf=False, mask_and_scale=False, consolidated=True)
+        ds = xr.open_zarr(path, **{"consolidated": True, **kw})
+    order = ds.attrs.pop(ORDER_ATTR, None)
+    if isinstance(order, list) and set(order) == set(map(str, ds.variables)):
+        ds = _ordered(ds, order)
+    for var in ds.variables.values():
+        for key in TYPED_ATTRS:
+            if key in var.attrs and var.dtype.kind in "iuf":
+                var.attrs[key] = np.asarray(var.attrs[key], dtype=var.dtype)
+    return ds

@@ -1,0 +1,193 @@
+"""The data as real clients read it: both NetCDF engines, Zarr, the stressfields backend, CF-1.8,
+dask chunks on reopening, float32, compression and non-finite values."""
+import warnings
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import stressfields as sf
+from stressfields import cli, writers
+from stressfields.hashing import file_hash
+from stressfields.netcdf import _layout
+
+from test_cf_and_docs import cf_failures
+
+pytest.importorskip("zarr")
+
+#: a sweep over choices (`control`) beside a numeric one
+CHOICES = {"scenario": "graded_adhesive", "parameters": {"profile": "parabolic", "R": 0.01, "E0": 1e6,
+                                                         "delta_gamma": 0.05, "a": 1e-4,
+                                                         "k": {"start": 0.0, "stop": 0.9, "num": 4}},
+           "output": {"variables": ["critical_radius", "critical_force"]}}
+#: the cone's stresses are unbounded at the contact edge |x| = 1 and the apex x = 0: +-inf there
+CONE = {"scenario": "conical", "parameters": {"mu": [0.0, 0.3], "x": {"start": -1.5, "stop": 1.5, "num": 61},
+                                              "y": 0.0},
+        "output": {"variables": ["sigma_xx", "von_mises"], "chunks": {"mu": 1}}}
+
+
+@pytest.fixture(scope="module")
+def choice_files(tmp_path_factory):
+    out = tmp_path_factory.mktemp("choices")
+    ds = sf.generate(CHOICES)
+    return ds, sf.write(ds, out / "c.nc"), sf.write(ds, out / "c.zarr")
+
+
+@pytest.mark.parametrize("engine", ["netcdf4", "h5netcdf"])
+def test_both_netcdf_engines_read_the_same_values_and_flags(choice_files, engine):
+    pytest.importorskip({"netcdf4": "netCDF4"}.get(engine, engine))
+    ds, nc, _ = choice_files
+    with xr.open_dataset(nc, engine=engine) as got:
+        np.testing.assert_array_equal(got.critical_force.values, ds.critical_force.values)
+        assert got.control.dtype == np.int8 and got.control.attrs["flag_values"].dtype == np.int8
+        assert list(got.control_name.values) == ["fixed_load", "fixed_grips"]
+
+
+@pytest.mark.parametrize("kind", ["nc", "zarr"])
+def test_choice_dimensions_reopen_labelled(choice_files, kind):
+    ds, nc, store = choice_files
+    path = nc if kind == "nc" else store
+    expected = ds.critical_force.isel(control=1).values        # code 1 is the second choice, by build
+    for opened in (sf.open_dataset(path), xr.open_dataset(path, engine="stressfields", chunks={})):
+        with opened as got:
+            assert list(got.control.values) == ["fixed_load", "fixed_grips"] and "control_name" not in got
+            np.testing.assert_array_equal(got.critical_force.sel(control="fixed_grips").values, expected)
+
+
+def test_a_labelled_dataset_is_written_in_the_cf_flag_form(tmp_path, choice_files):
+    ds, nc, _ = choice_files
+    labelled = sf.open_dataset(nc).load()
+    assert labelled.control.dtype.kind in "OU"
+    again = sf.write(labelled, tmp_path / "again.nc")
+    zarr_again = sf.write(labelled, tmp_path / "again.zarr")
+    assert file_hash(again) == file_hash(nc)                    # the same file, bit for bit in content
+    with xr.open_zarr(zarr_again) as z, xr.open_dataset(nc) as n:
+        assert z.control.attrs["flag_meanings"] == n.control.attrs["flag_meanings"] == "fixed_load fixed_grips"
+
+
+def test_zarr_export_keeps_types_order_and_cf(tmp_path, choice_files):
+    _, nc, store = choice_files
+    exported = sf.export(store, tmp_path / "e.nc")
+    assert file_hash(exported)[0] == file_hash(nc)[0]           # attribute dtypes are hashed too
+    with xr.open_dataset(exported) as e, xr.open_dataset(nc) as d:
+        assert list(e.variables) == list(d.variables)
+        assert e.control.attrs["flag_values"].dtype == np.int8
+    assert cf_failures(exported) == []
+
+
+def test_zarr_commands_print_no_zarr_warning(tmp_path, capfd):
+    recipe = tmp_path / "w.toml"
+    recipe.write_text('scenario = "wavy"\n[parameters]\ndomain = ["periodic", "nonperiodic"]\namplitudes = [0.5]\n'
+                      'wavenumbers = [1]\na = 0.3\nx = { start = -1.0, stop = 1.0, num = 21 }\n'
+                      '[output]\nvariables = ["pressure"]\n')
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")          # any warning fails the commands below
+        assert cli.main(["run", str(recipe), "-o", str(tmp_path / "w.zarr"), "-q"]) == 0
+        assert cli.main(["hash", str(tmp_path / "w.zarr")]) == 0
+        assert cli.main(["export", str(tmp_path / "w.zarr"), "-o", str(tmp_path / "w.nc")]) == 0
+    assert "Warning" not in capfd.readouterr().err
+    with sf.open_dataset(tmp_path / "w.nc") as got:
+        assert list(got.domain.values) == ["periodic", "nonperiodic"]
+        assert got.pressure.sel(domain="nonperiodic").shape == (21,)
+
+
+def test_float32_and_compression_stay_cf_clean_and_within_the_rounding_note(tmp_path):
+    ds = sf.generate(CONE)
+    exact = ds.compute()
+    single = sf.write(ds, tmp_path / "f32.nc", dtype="float32")
+    packed = sf.write(ds, tmp_path / "z.nc", compression=4)
+    for path in (single, packed):
+        assert cf_failures(path) == []
+        assert file_hash(path)[0] == file_hash(path)[1]
+    with xr.open_dataset(single) as got, xr.open_dataset(packed) as z:
+        assert got.sigma_xx.dtype == np.float32 and got.x.dtype == np.float64
+        assert "float32" in got.sigma_xx.attrs["stressfields_accuracy"]
+        assert "dtype=float32" in got.attrs[writers.OPTIONS_ATTR]
+        ref = exact.sigma_xx.values
+        finite = np.isfinite(ref)
+        # float32 keeps 24 bits: |rounded - exact| <= 2^-24 |exact| (the note's 6e-8)
+        assert np.all(np.abs(got.sigma_xx.values[finite] - ref[finite]) <= 2.0 ** -24 * np.abs(ref[finite]))
+        np.testing.assert_array_equal(got.sigma_xx.values[~finite], ref[~finite])   # +-inf stay +-inf
+        np.testing.assert_array_equal(z.sigma_xx.values, ref)                      # zlib is lossless
+        assert z.sigma_xx.encoding["zlib"] and z.sigma_xx.encoding["shuffle"]
+    assert file_hash(sf.write(ds, tmp_path / "again.nc", dtype="float32")) == file_hash(single)
+
+
+def test_float32_error_estimate_stays_an_upper_bound(tmp_path):
+    recipe = {"scenario": "wavy", "parameters": {"amplitudes": [0.5, 0.01], "wavenumbers": [1, 11],
+                                                 "a": [0.05, 0.3, 0.8], "x": 0.0},
+              "output": {"variables": ["error_estimate"]}, "method": {"rtol": 1e-6}}
+    ds = sf.generate(recipe)
+    exact = ds.error_estimate.values
+    with xr.open_dataset(sf.write(ds, tmp_path / "e.nc", dtype="float32")) as got:
+        stored = got.error_estimate.values
+    assert stored.dtype == np.float32 and np.all(stored.astype(np.float64) >= exact)
+    assert np.all(stored.astype(np.float64) <= exact * (1 + 2.0 ** -23))
+
+
+def test_a_float_beyond_float32_is_refused_not_stored_as_inf(tmp_path):
+    ds = xr.Dataset({"f": ("x", np.array([1.0, 1e300]))}, coords={"x": [0.0, 1.0]})
+    with pytest.raises(sf.OutputError, match="exceeds the float32 range"):
+        sf.write(ds, tmp_path / "big.nc", dtype="float32")
+    assert not (tmp_path / "big.nc").exists()
+
+
+@pytest.mark.parametrize("mode", ["keep", "nan", "fill"])
+def test_nonfinite_modes(tmp_path, mode):
+    ds = sf.generate(CONE)
+    exact = ds.compute()
+    inf = np.isinf(exact.sigma_xx.values)
+    assert inf.any() and np.all(exact.validity.values[inf] != 0)
+    path = sf.write(ds, tmp_path / f"{mode}.nc", nonfinite=mode)
+    with xr.open_dataset(path) as got, xr.open_dataset(path, mask_and_scale=False) as raw:
+        np.testing.assert_array_equal(got.validity.values, exact.validity.values)    # the flag says why
+        np.testing.assert_array_equal(got.sigma_xx.values[~inf], exact.sigma_xx.values[~inf])
+        values = raw.sigma_xx.values[inf]
+        if mode == "keep":
+            np.testing.assert_array_equal(values, exact.sigma_xx.values[inf])
+        elif mode == "nan":
+            assert np.isnan(values).all() and "_FillValue" not in raw.sigma_xx.attrs
+        else:
+            assert np.all(values == raw.sigma_xx.attrs["_FillValue"]) and np.isnan(got.sigma_xx.values[inf]).all()
+        assert not np.isinf(got.sigma_xx.values).any() or mode == "keep"
+
+
+def test_reopened_chunks_follow_dask_and_stay_below_64_mb(tmp_path):
+    ds = sf.generate({**CONE, "output": {"variables": ["sigma_xx"], "chunks": {"mu": 1, "x": 16}}})
+    path = sf.write(ds, tmp_path / "c.nc")
+    with xr.open_dataset(path, chunks={}) as got:
+        assert got.sigma_xx.chunks == ((1, 1), (16, 16, 16, 13))
+    # the HDF5 chunk of a large dask chunk is capped: leading dimensions shrink, a line along x stays whole
+    big = xr.DataArray(np.broadcast_to(np.float64(0), (4000, 5000))).chunk({"dim_0": 4000}).variable
+    chunks = _layout(big, 0)["chunksizes"]
+    assert np.prod(chunks) * 8 <= 64 * 2 ** 20 and chunks[1] == 5000
+
+
+def test_output_options_are_checked_together():
+    assert writers.output_options("float32", 9, "fill") == writers.OutputOptions("float32", 9, "fill")
+    problems = writers.output_option_problems("float16", 12, "drop")
+    assert len(problems) == 3 and all(key in " ".join(problems) for key in ("dtype", "compression", "nonfinite"))
+    with pytest.raises(sf.OutputError, match="float16"):
+        sf.write(sf.generate(CONE), "unused.nc", dtype="float16")
+    option = writers.OutputOptions("float32", 3, "nan")
+    assert writers.OutputOptions.from_attrs({writers.OPTIONS_ATTR: option.text()}) == option
+
+
+def test_recipe_output_table_sets_the_storage(tmp_path):
+    """[output] dtype/compression/nonfinite reach the file; a flag on the command line overrides them."""
+    import xarray as xr
+
+    from stressfields import cli
+
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('scenario = "conical"\n[parameters]\nx = [0.0, 0.5, 2.0]\n'
+                      '[output]\nvariables = ["sigma_xx"]\ndtype = "float32"\nnonfinite = "nan"\n')
+    assert cli.main(["run", str(recipe), "-o", str(tmp_path / "a.nc"), "-q"]) == 0
+    assert cli.main(["run", str(recipe), "-o", str(tmp_path / "b.nc"), "-q", "--dtype", "float64"]) == 0
+    with xr.open_dataset(tmp_path / "a.nc") as a, xr.open_dataset(tmp_path / "b.nc") as b:
+        assert a.sigma_xx.dtype == "float32" and b.sigma_xx.dtype == "float64"
+        assert not bool((abs(a.sigma_xx) == float("inf")).any())    # the cone tip's -inf became NaN
+        assert bool(a.sigma_xx.isnull()[0]) and int(a.validity[0]) != 0
+    bad = tmp_path / "bad.toml"
+    bad.write_text(recipe.read_text().replace('"float32"', '"float16"'))
+    assert cli.main(["validate", str(bad)]) == 2
