@@ -1,10 +1,12 @@
-"""Axisymmetric rigid indenters on a homogeneous elastic half-space: surface stress tensor and
-hydrostatic-pressure gradient under normal and Cattaneo–Mindlin tangential load.
+"""Axisymmetric rigid indenters on a homogeneous elastic half-space: stress tensor and
+hydrostatic-pressure gradient on the surface under normal and Cattaneo–Mindlin tangential load,
+and below it (depth z > 0) under normal load.
 
 Scenarios `conical`, `parabolic` and `axisymmetric` (power law, tabulated profile, flat punch).
-Normalised mode (default): x, y in units of the contact radius a, stresses divided by the mean
+Normalised mode (default): x, y, z in units of the contact radius a, stresses divided by the mean
 contact pressure p_m = F_N / (pi a^2), dp/dz by p_m / a. Physical mode (the recipe gives E):
-metres, pascals. Equations, conventions and errata: docs/theory/axisymmetric.md (A1)-(A64).
+metres, pascals. Equations, conventions and errata: docs/theory/axisymmetric.md (A1)-(A64), below
+the surface docs/theory/interior.md (I1)-(I28).
 
 This module declares and maps: recipe values -> a ``physics.axisymmetric`` profile -> one call of
 ``physics.axisymmetric.fields`` (which decides the route, ``physics.axisymmetric.resolve``) -> the
@@ -18,7 +20,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..physics import axisymmetric as ax
-from ..physics.axisymmetric import PRINCIPAL, STRESS
+from ..physics.axisymmetric import PRINCIPAL, STRESS, TANGENTIAL_BELOW
 from .base import ARRAY, STR, Parameter, Scenario, Variable
 
 REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient of hydrostatic pressure "
@@ -27,6 +29,7 @@ REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient o
 
 PM = "the mean contact pressure p_m = F_N/(pi a^2)"
 SPATIAL = ("y", "x")  # x last: a line along x is contiguous on disk
+DEPTH = ("z",) + SPATIAL  # z before y, x: a surface-parallel plane is contiguous on disk
 
 # -- parameters shared by the three scenarios ------------------------------------------------
 NU = Parameter("nu", "Poisson's ratio of the half-space", default=0.3, low=0.0, high=0.5)
@@ -41,6 +44,9 @@ X = Parameter("x", "surface coordinate x (direction of the tangential load) divi
               "radius a", units="1", units_physical="m", required=True, low=-1e6, high=1e6)
 Y = Parameter("y", "surface coordinate y divided by the contact radius a", units="1",
               units_physical="m", default=0.0, low=-1e6, high=1e6)
+Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface; z > 0 under "
+              "normal load only: mu = 0 or ux0 = 0)", units="1", units_physical="m", default=0.0, low=0.0,
+              high=1e6)
 THETA = Parameter("theta", "inclination angle of the cone flank to the undeformed surface", units="rad",
                   low=0.0, low_open=True, high=math.pi / 2, high_open=True, sweepable=False,
                   mode="physical")
@@ -65,20 +71,29 @@ PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-d
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
 
 
-def variables(case: tuple[str, ...], geometry: tuple[str, ...]) -> tuple[Variable, ...]:
-    """The output variables; `case` lists the non-spatial parameters, `geometry` the profile's."""
-    everything = case + SPATIAL
+def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[str, ...] = SPATIAL
+              ) -> tuple[Variable, ...]:
+    """The output variables; `case` lists the non-spatial parameters, `geometry` the profile's,
+    `spatial` the point's coordinates (SPATIAL: the surface; DEPTH: with the depth z)."""
+    everything = case + spatial
+    surface = case + SPATIAL
     load = ("nu", "E", "delta") + geometry     # what fixes a, F_N and p_m
-    stress = [Variable(f"sigma_{c}", f"surface stress component sigma_{c} at z = 0", units_physical="Pa",
-                       scale=PM, dims=everything) for c in ("xx", "yy", "zz", "xy", "xz", "yz")]
+    deep = "z" in spatial
+    at = "at depth z (z = 0: the surface)" if deep else "at z = 0"
+    stress = [Variable(f"sigma_{c}", f"{'stress' if deep else 'surface stress'} component sigma_{c} {at}",
+                       units_physical="Pa", scale=PM, dims=everything) for c in ("xx", "yy", "zz", "xy", "xz", "yz")]
+    singular = ("cone tip r = 0; dpdz at the contact edge r = a and the stick edge r = c; flat-punch edge")
     return tuple(stress) + (
-        Variable("von_mises", "von Mises equivalent stress sqrt(3 J2) at z = 0", units_physical="Pa",
+        Variable("von_mises", f"von Mises equivalent stress sqrt(3 J2) {at}", units_physical="Pa",
                  scale=PM, dims=everything),
-        Variable("sigma_1", "largest principal stress at z = 0", units_physical="Pa", scale=PM, dims=everything),
-        Variable("sigma_2", "intermediate principal stress at z = 0", units_physical="Pa", scale=PM,
+        Variable("sigma_1", f"largest principal stress {at}", units_physical="Pa", scale=PM, dims=everything),
+        Variable("sigma_2", f"intermediate principal stress {at}", units_physical="Pa", scale=PM,
                  dims=everything),
-        Variable("sigma_3", "smallest principal stress at z = 0", units_physical="Pa", scale=PM, dims=everything),
-        Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z at z = 0+",
+        Variable("sigma_3", f"smallest principal stress {at}", units_physical="Pa", scale=PM, dims=everything),
+        Variable("tau_max", f"maximum shear stress (sigma_1 - sigma_3)/2 {at}", units_physical="Pa", scale=PM,
+                 dims=everything),
+        Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z "
+                 + ("(at z = 0: the limit z -> 0+)" if deep else "at z = 0+"),
                  units_physical="Pa m-1", scale="p_m/a, with p_m = F_N/(pi a^2) and a the contact radius",
                  dims=everything),
         Variable("stick_radius", "radius c of the stick zone (Cattaneo-Mindlin; 0 in gross slip; a under "
@@ -87,16 +102,19 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...]) -> tuple[Variabl
                  scale="the effective modulus E* = E/(1-nu^2)", dims=load),
         Variable("contact_radius", "contact radius a", units="m", dims=("delta",) + geometry, mode="physical"),
         Variable("normal_force", "normal force F_N", units="N", dims=load, mode="physical"),
-        Variable("region", "contact region of the surface point", dtype="int8", dims=everything,
+        Variable("region", "contact region of the surface point", dtype="int8", dims=surface,
                  flag_values=(0, 1, 2, 3),
-                 flag_meanings=("outside_contact", "stick", "slip", "contact_without_tangential_traction")),
-        Variable("validity", "validity of the field values at the surface point", dtype="int8",
-                 dims=everything, flag_values=(0, 1, 2),
+                 flag_meanings=("outside_contact", "stick", "slip", "contact_without_tangential_traction"),
+                 comment=("Of the surface point (x, y) above the field point: independent of the depth z."
+                          if deep else None)),
+        Variable("validity", f"validity of the field values at the {'point' if deep else 'surface point'}",
+                 dtype="int8", dims=everything, flag_values=(0, 1, 2),
                  flag_meanings=("finite", "unbounded_at_singular_point", "undefined_direction_dependent_limit"),
-                 comment="1: a value is +-inf where the exact field is unbounded (cone tip r = 0; dpdz at the "
-                         "contact edge r = a and the stick edge r = c; flat-punch edge); 2: a value is NaN where "
+                 comment=f"1: a value is +-inf where the exact field is unbounded ({singular}"
+                         + ("; all at z = 0" if deep else "") + "); 2: a value is NaN where "
                          "the exact limit depends on the direction of approach (r = 0 under gross slip of a "
-                         "cone). Only the variables in this file are considered.",
+                         "cone). " + ("Below the surface (z > 0) every value is finite (0). " if deep else "")
+                         + "Only the variables in this file are considered.",
                  always=True),
     )
 
@@ -152,10 +170,10 @@ def contact(names, p: Mapping[str, Any], profile: ax.Profile, physical: bool) ->
     return a, out
 
 
-def surface_point(p: Mapping[str, Any], physical: bool, a) -> tuple:
-    """x, y in the profile's length unit (None where the group has no surface point)."""
+def surface_point(p: Mapping[str, Any], physical: bool, a, keys: tuple[str, ...] = ("x", "y")) -> tuple:
+    """x, y (and z, if in ``keys``) in the profile's length unit (None where the group has none)."""
     length = 1.0 if physical else a
-    return tuple(_f(p, k) * length if k in p else None for k in ("x", "y"))
+    return tuple(_f(p, k) * length if k in p else None for k in keys)
 
 
 def _evaluate(kind: str | None):
@@ -169,7 +187,7 @@ def _evaluate(kind: str | None):
         if not local:
             return out
         scale, dpdz_scale = scales(p, physical, a, profile)
-        values, _ = ax.fields(local, profile, *surface_point(p, physical, a), a=a, nu=_f(p, "nu"),
+        values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=_f(p, "nu"),
                               mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"], rtol=options["rtol"],
                               scale=scale, dpdz_scale=dpdz_scale)
         if "stick_radius" in values and not physical:
@@ -215,6 +233,28 @@ def check_profile(values, physical, method):
     return problems
 
 
+def check_depth(kind: str | None = None):
+    """The check of a scenario with the depth z (``kind`` its profile kind; None: the recipe's
+    `profile`, with ``check_profile``): fields below the surface exist under normal load only, and
+    ``closed`` only where the interior has closed forms."""
+
+    def check(values, physical, method):
+        problems = check_profile(values, physical, method) if kind is None else []
+        if not np.any(np.asarray(values.get("z", 0.0), dtype=float) > 0.0):
+            return problems
+        if np.any(np.asarray(values.get("mu", 0.0)) > 0.0) and np.any(np.asarray(values.get("ux0", 0.0)) > 0.0):
+            problems.append(TANGENTIAL_BELOW)
+        which = kind or values.get("profile", PROFILE.default)
+        if (method == "closed" and ax.has_closed_form(which, values.get("n"))
+                and not ax.has_interior_closed_form(which, values.get("n"))):
+            problems.append(f"method.method = 'closed' has no closed form below the surface (z > 0) for "
+                            f"{'profile = ' + repr(which) if kind is None else 'the ' + which}; use 'auto' or "
+                            "'quadrature', or z = 0")
+        return problems
+
+    return check
+
+
 #: p / p_m below this is tensile: far beyond the quadrature's error (1e-10 p_m) of ``min_pressure``
 _TENSILE = -1e-9
 
@@ -238,27 +278,37 @@ def route_of(kind: str | None = None, default: str = PROFILE.default):
     for the profile ``kind`` (None: the recipe's `profile`, else ``default``)."""
 
     def route(values, method, rtol):
-        return ax.resolve(kind or values.get("profile", default), method, rtol, values.get("n"))
+        which = kind or values.get("profile", default)
+        z = values.get("z")
+        if z is not None and np.any(np.asarray(z, dtype=float) > 0.0) and rtol < ax.INTERIOR_RTOL \
+                and ax.resolve_interior(which, method, rtol, values.get("n")).kernel == "quadrature":
+            from ..recipe import RecipeError     # the check does not see rtol; recipe imports this module
+            raise RecipeError([f"method.rtol = {rtol:g} is below {ax.INTERIOR_RTOL:g}, the smallest the "
+                               f"superposition below the surface (z > 0) reaches for {which!r}; use "
+                               f"rtol >= {ax.INTERIOR_RTOL:g}, or z = 0"])
+        return ax.resolve_depth(which, method, rtol, values.get("n"), z)
 
     return route
 
 
-def _scenario(name, summary, geometry, kind, check=None):
-    params = (NU, MU, UX0, E, DELTA) + geometry + (Y, X)
-    case = tuple(p.name for p in params if p.name not in SPATIAL)
+def _scenario(name, summary, geometry, kind):
+    params = (NU, MU, UX0, E, DELTA) + geometry + (Z, Y, X)
+    case = tuple(p.name for p in params if p.name not in DEPTH)
     return Scenario(
         name=name, summary=summary, references=REFERENCE, theory="axisymmetric", parameters=params,
-        variables=variables(case, tuple(p.name for p in geometry)), evaluate=_evaluate(kind),
+        variables=variables(case, tuple(p.name for p in geometry), DEPTH), evaluate=_evaluate(kind),
         physical_switch="E", methods=ax.METHODS,
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),
-        check=check, route=route_of(kind),
+        check=check_depth(kind), route=route_of(kind),
     )
 
 
 CONICAL = _scenario("conical", "Rigid cone on an elastic half-space: surface stresses and dp/dz under normal "
-                    "and Cattaneo-Mindlin tangential load", (THETA,), "cone")
+                    "and Cattaneo-Mindlin tangential load, and below the surface under normal load", (THETA,), "cone")
 PARABOLIC = _scenario("parabolic", "Rigid paraboloid (Hertz-Mindlin) on an elastic half-space: surface stresses "
-                      "and dp/dz under normal and Cattaneo-Mindlin tangential load", (R,), "paraboloid")
+                      "and dp/dz under normal and Cattaneo-Mindlin tangential load, and below the surface under "
+                      "normal load", (R,), "paraboloid")
 AXISYMMETRIC = _scenario("axisymmetric", "Rigid axisymmetric indenter of any profile (power law, tabulated, flat "
-                         "punch) on an elastic half-space: surface stresses and dp/dz (MDR, 1-D integrals)",
-                         (PROFILE, N, A, RADIUS, PROFILE_R, PROFILE_F), None, check_profile)
+                         "punch) on an elastic half-space: surface stresses and dp/dz (MDR, 1-D integrals), and "
+                         "below the surface under normal load (1-D superposition of flat punches)",
+                         (PROFILE, N, A, RADIUS, PROFILE_R, PROFILE_F), None)

@@ -137,3 +137,58 @@ def test_surface_continuity_and_flat_punch():
         assert np.allclose(s1[c], s0[c][1:], rtol=1e-8, atol=1e-10)
     fp = interior_stress(r, 0 * r, 1e-12, 1.0, NU, ax.flat_punch(1.0, 0.01))
     assert np.allclose(fp["zz"][r < 1], -0.01 / (math.pi * np.sqrt(1 - r[r < 1] ** 2)), rtol=1e-9, atol=0)
+
+
+# -- d p_h/dz (docs/theory/interior.md (I24)-(I28)) -----------------------------------------------
+
+_RD = np.concatenate([np.linspace(0.0, 1.2, 40), 1 - 10.0 ** -np.arange(1, 13), 1 + 10.0 ** -np.arange(1, 13, 2)])
+_ZD = 10.0 ** np.linspace(-12, 0.5, _RD.size)[::-1]
+
+
+def _trace_derivative(profile, x, y, z, h, rtol=1e-12):
+    ph = [-sum(interior_stress(x, y, z + s * h, 1.0, NU, profile, rtol=rtol)[c] for c in ("xx", "yy", "zz")) / 3
+          for s in (1, -1)]
+    return (ph[0] - ph[1]) / (2 * h)
+
+
+@pytest.mark.parametrize("profile", [ax.paraboloid(1.0), ax.flat_punch(1.0, 0.3)])
+def test_closed_dpdz_is_the_derivative_of_the_trace(profile):
+    """(I26), (I27) against central differences of the closed-form stresses: second order."""
+    x, y, z = RNG.uniform(-2, 2, 20), RNG.uniform(-2, 2, 20), RNG.uniform(0.1, 2.0, 20)
+    exact = ax.interior_dpdz(x, y, z, 1.0, NU, profile)
+    err = [np.max(np.abs(_trace_derivative(profile, x, y, z, h) - exact)) for h in (2e-3, 1e-3)]
+    assert err[1] < 1e-5 and 3.5 < err[0] / err[1] < 4.5
+
+
+@pytest.mark.parametrize("rtol", [1e-4, 1e-6, 1e-8, 1e-10])
+def test_dpdz_superposition_of_the_paraboloid_equals_hertz(rtol):
+    """The 1-D route (with the integration by parts of (I28)) against (I26), from the axis to
+    next to the edge ring and from z = 1e-12 a (y = 0: r is exact, no conditioning of x -> r)."""
+    P = ax.paraboloid(1.0)
+    closed = ax.interior_dpdz(_RD, 0 * _RD, _ZD, 1.0, NU, P)
+    q = ax.interior_dpdz(_RD, 0 * _RD, _ZD, 1.0, NU, P, method="quadrature", rtol=rtol)
+    assert np.max(np.abs(q - closed) / np.maximum(np.abs(closed), _pm(P))) <= rtol
+
+
+@pytest.mark.parametrize("profile", [ax.cone(0.3), ax.power_law(1.0, 0.5), ax.power_law(1.0, 3.0),
+                                     ax.tabulated(_KNOTS, _KNOTS ** 2 / 2 + 0.3 * _KNOTS ** 4)])
+def test_dpdz_superposition_meets_rtol(profile):
+    """Every profile: the finest row against a difference of the (independently tested) stresses in
+    z, then each row against the finest one, near the surface included."""
+    x, y, z = RNG.uniform(-1.5, 1.5, 12), RNG.uniform(-1.5, 1.5, 12), RNG.uniform(0.2, 1.5, 12)
+    fine = ax.interior_dpdz(x, y, z, 1.0, NU, profile, rtol=1e-12)
+    assert np.max(np.abs(_trace_derivative(profile, x, y, z, 1e-3) - fine)) < 1e-5 * _pm(profile)
+    ref = ax.interior_dpdz(_RD, 0 * _RD, _ZD, 1.0, NU, profile, rtol=1e-12)
+    for rtol in (1e-4, 1e-8):
+        q = ax.interior_dpdz(_RD, 0 * _RD, _ZD, 1.0, NU, profile, rtol=rtol)
+        assert np.max(np.abs(q - ref) / np.maximum(np.abs(ref), _pm(profile))) <= rtol
+
+
+def test_dpdz_tends_to_the_surface_kernel():
+    """z -> 0+ against the surface kernel (docs/theory/axisymmetric.md (A24)-(A26)), off the edge."""
+    r = np.array([0.0, 0.3, 0.8, 1.4, 2.5])
+    for profile in (ax.paraboloid(1.0), ax.cone(0.4), ax.flat_punch(1.0, 0.01)):
+        surface = ax.surface_dpdz(r, 0 * r, 1.0, 1.0, NU, 0.0, profile, method="closed")
+        near = ax.interior_dpdz(r[1:], 0 * r[1:], 1e-9, 1.0, NU, profile)
+        assert np.allclose(near, surface[1:], rtol=1e-6, atol=1e-7)
+        assert np.allclose(ax.interior_dpdz(r, 0 * r, 0.0, 1.0, NU, profile)[1:], surface[1:], rtol=1e-10, atol=0)

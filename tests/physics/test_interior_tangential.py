@@ -17,7 +17,7 @@ from scipy.integrate import quad
 
 from stressfields.physics import axisymmetric as ax
 from stressfields.physics.axisymmetric.interior_hertz import (_geometry, _sliding_cartesian, _sliding_scalars,
-                                                             sliding_unit)
+                                                             sliding_punch_unit, sliding_unit)
 from stressfields.physics.axisymmetric.interior_tangential import interior_stress_tangential
 from stressfields.physics.axisymmetric.surface import surface_stress
 
@@ -213,11 +213,153 @@ def test_edge_rings_are_finite_and_continuous():
 
 def test_validation():
     par = ax.paraboloid(1.0)
-    with pytest.raises(ValueError, match="paraboloid only"):
-        interior_stress_tangential(0.0, 0.0, 1.0, 1.0, 0.0, NU, 0.3, ax.cone(0.2))
+    with pytest.raises(ValueError, match="closed"):
+        interior_stress_tangential(0.0, 0.0, 1.0, 1.0, 0.0, NU, 0.3, ax.cone(0.2), method="closed")
     for bad in (dict(z=-1.0), dict(c=2.0), dict(nu=0.6), dict(mu=-0.1)):
         args = dict(z=1.0, c=0.5, nu=NU, mu=0.3) | bad
         with pytest.raises(ValueError):
             interior_stress_tangential(0.0, 0.0, args["z"], 1.0, args["c"], args["nu"], args["mu"], par)
     with pytest.raises(ValueError, match="method"):
-        interior_stress_tangential(0.0, 0.0, 1.0, 1.0, 0.0, NU, 0.3, par, method="quadrature")
+        interior_stress_tangential(0.0, 0.0, 1.0, 1.0, 0.0, NU, 0.3, par, method="series")
+    with pytest.raises(ValueError, match="punch radius"):
+        interior_stress_tangential(0.0, 0.0, 1.0, 2.0, 0.0, NU, 0.3, ax.flat_punch(1.0))
+
+
+# -- the sliding punch K_T and the superposition of sliding punches (I30)-(I33) ----------------------
+
+CONE, CUBIC = ax.cone(0.3), ax.power_law(0.7, 3.0)
+
+
+def test_sliding_punch_is_the_rho_derivative_of_the_sliding_field():
+    """(I30): pi K_T = d/d rho [rho T(x/rho)] at rho = 1, by a Richardson-extrapolated central
+    difference of the Hertz sliding field (error O(h^4) = 1e-12, rounding eps/h = 1e-13)."""
+    x, y, z = POINTS.T
+    bt = lambda b: {k: b * v for k, v in sliding_unit(x / b, y / b, z / b, NU).items()}
+    d = lambda h: {k: (bt(1 + h)[k] - bt(1 - h)[k]) / (2 * h) for k in ax.COMPONENTS}
+    d1, d2 = d(1e-3), d(5e-4)
+    u = sliding_punch_unit(x, y, z, NU)
+    for k in ax.COMPONENTS:
+        ref = (4 * d2[k] - d1[k]) / (3 * math.pi)
+        assert np.max(np.abs(u[k] - ref)) <= 1e-10 * np.max(np.abs(ref)), k
+
+
+def test_sliding_punch_solves_the_pdes_and_traction():
+    coarse, fine = _residuals(sliding_punch_unit, 1e-3), _residuals(sliding_punch_unit, 5e-4)
+    for c, fi in zip(coarse, fine):
+        assert fi < 1e-3 and 3.5 < c / fi < 4.5
+    r = np.array([0.0, 0.3, 0.6, 0.9, 1.2, 2.0])
+    s = sliding_punch_unit(r * 0.8, r * 0.6, 0.0, NU)
+    q = np.where(r < 1, 1 / (math.pi * np.sqrt(np.abs(1 - r * r))), 0.0)
+    assert np.allclose(s["xz"], -q, rtol=1e-14, atol=0)
+    assert np.all(s["zz"] == 0.0) and np.all(s["yz"] == 0.0)
+    # in-plane: 0 inside the punch, (A42)-(A44) outside (the surface kernels' flat punch)
+    fp = ax.flat_punch(1.0)
+    ref = {k: surface_stress(r * 0.8, r * 0.6, 1.0, 0.0, NU, 1.0, fp)[k]
+           - surface_stress(r * 0.8, r * 0.6, 1.0, 1.0, NU, 0.0, fp)[k] for k in ("xx", "yy", "xy")}
+    for k in ref:
+        assert np.allclose(s[k], ref[k], rtol=1e-13, atol=1e-16), k
+
+
+def test_sliding_punch_edge_ring():
+    """(I32): on r = 1, z = 0 sigma_xz = -inf, sigma_xx = -inf sgn x, 0 where odd by symmetry, NaN
+    where the sign depends on the direction (sigma_zz off x = 0)."""
+    x, y = np.array([1.0, -1.0, 0.0, 0.6]), np.array([0.0, 0.0, 1.0, 0.8])
+    s = sliding_punch_unit(x, y, 0.0, NU)
+    assert np.all(s["xz"] == -math.inf)
+    assert list(s["xx"]) == [-math.inf, math.inf, 0.0, -math.inf]
+    assert list(s["xy"][:3]) == [0.0, 0.0, -math.inf] and s["yz"][0] == 0.0 and s["yz"][2] == 0.0
+    assert np.isnan(s["zz"][0]) and s["zz"][2] == 0.0 and np.isnan(s["yz"][3])
+    # the sign of -inf is the one of the field next to the ring, in every direction into the body
+    om = np.linspace(0.01, math.pi - 0.01, 50)
+    near = sliding_punch_unit(0.6 * (1 + 1e-9 * np.cos(om)), 0.8 * (1 + 1e-9 * np.cos(om)), 1e-9 * np.sin(om), NU)
+    for k in ("xx", "xy", "xz"):
+        assert np.all(near[k] < 0.0), k
+
+
+def _tangential(profile, c, rtol=1e-12, mu=1.0):
+    return lambda x, y, z, nu: interior_stress_tangential(x, y, z, 1.0, c, nu, mu, profile, rtol=rtol)
+
+
+@pytest.mark.parametrize("profile", [CONE, CUBIC], ids=["cone", "power3"])
+def test_one_d_route_solves_the_pdes(profile):
+    coarse, fine = _residuals(_tangential(profile, 0.4), 1e-3), _residuals(_tangential(profile, 0.4), 5e-4)
+    for c, fi in zip(coarse, fine):
+        assert fi < 1e-4 and 3.5 < c / fi < 4.5
+
+
+@pytest.mark.parametrize("c", [0.0, 0.4])
+@pytest.mark.parametrize("profile", [CONE, CUBIC], ids=["cone", "power3"])
+def test_one_d_route_traction_equals_surface_kernels(profile, c):
+    """z -> 0+: the traction (sigma_xz, sigma_yz, sigma_zz) and the in-plane stresses tend to the
+    surface kernels' tangential part (closed forms for the cone, quadrature for n = 3)."""
+    r = np.array([0.05, 0.2, 0.35, 0.5, 0.8, 0.95, 1.1, 2.0])
+    x, y = r * math.cos(0.7), r * math.sin(0.7)
+    method = "closed" if profile is CONE else "quadrature"
+    ref = {k: surface_stress(x, y, 1.0, c, NU, 0.5, profile, method=method)[k]
+           - surface_stress(x, y, 1.0, 1.0, NU, 0.0, profile, method=method)[k] for k in ax.COMPONENTS}
+    pm = float(profile.normal_force(1.0)) / math.pi
+    s = interior_stress_tangential(x, y, 1e-10, 1.0, c, NU, 0.5, profile)
+    for k in ax.COMPONENTS:
+        assert np.allclose(s[k], ref[k], rtol=0, atol=1e-8 * pm), k
+
+
+@pytest.mark.parametrize("c", [0.0, 0.5, 0.999])
+def test_one_d_route_equals_the_paraboloid_closed_form(c):
+    rng = np.random.default_rng(3)
+    r = np.concatenate([rng.uniform(0, 3, 80), [0.0, 1e-12, 0.5, 0.999, 1.0, 1.001]])
+    t = rng.uniform(0, 2 * math.pi, r.size)
+    x, y, z = r * np.cos(t), r * np.sin(t), 10 ** rng.uniform(-10, 1.3, r.size)
+    par, mu = ax.paraboloid(1.5), 0.4
+    smu = mu * float(par.normal_force(1.0)) / math.pi
+    closed = interior_stress_tangential(x, y, z, 1.0, c, NU, mu, par)
+    for rtol in (1e-6, 1e-10):
+        q = interior_stress_tangential(x, y, z, 1.0, c, NU, mu, par, method="quadrature", rtol=rtol)
+        for k in ax.COMPONENTS:
+            assert np.all(np.abs(q[k] - closed[k]) <= rtol * np.maximum(np.abs(closed[k]), smu)), (k, rtol)
+
+
+def _cone_axis_xz(z, c, t=0.3, mu=1.0):
+    """sigma_xz(0, 0, z) of the cone: Cerruti's sigma_xz = -3 x^2 z/(2 pi rho^5) over rings of the
+    traction q = mu p0 [arccosh(1/s) - arccosh(c/s)] (p0 = tan(theta)/2 per E*, (A36)), a = 1."""
+    q = lambda s: 0.5 * t * mu * (math.acosh(1 / s) - (math.acosh(c / s) if s < c else 0.0))
+    f = lambda s: q(s) * s ** 3 * z / (s * s + z * z) ** 2.5
+    pts = sorted({z, c} - {0.0})
+    return -1.5 * quad(f, 0, 1, epsabs=0, epsrel=1e-13, limit=400, points=pts)[0]
+
+
+@pytest.mark.parametrize("c", [0.0, 0.4])
+def test_cone_axis_against_cerruti_rings(c):
+    z = np.array([1e-3, 0.05, 0.4, 1.0, 3.0])
+    for r in (0.0, 1e-9):
+        s = interior_stress_tangential(r, 0.0, z, 1.0, c, NU, 1.0, CONE, rtol=1e-12)
+        ref = np.array([_cone_axis_xz(v, c) for v in z])
+        assert np.allclose(s["xz"], ref, rtol=1e-11, atol=0), r
+        for k in ("xx", "yy", "zz", "xy", "yz"):         # O(r): zero on the axis
+            assert np.all(np.abs(s[k]) <= 1e3 * r / z + 1e-14 * np.abs(ref)), k   # slope ~ 1/z (log tip)
+
+
+def test_cone_far_field_is_cerruti():
+    """R = 1e2 ... 1e3 a: the point load Q = mu (F(a) - F(c)) to relative O((a/R)^2)."""
+    x = np.array([1e2, 3e2, -2e2, 7e2, 1e3])
+    z = np.array([1e2, 5e2, 2e2, 1e3, 2e2])
+    y = np.array([50.0, -1e2, 4e2, 0.0, 3e2])
+    rho = np.sqrt(x * x + y * y + z * z)
+    c, mu = 0.4, 0.5
+    Q = mu * float(CONE.normal_force(1.0) - CONE.normal_force(c))
+    ref = _cerruti_stress(x, y, z, NU)
+    s = interior_stress_tangential(x, y, z, 1.0, c, NU, mu, CONE)
+    scale = np.max([np.abs(ref[k]) for k in ax.COMPONENTS], axis=0) * Q
+    for k in ax.COMPONENTS:
+        assert np.all(np.abs(s[k] - Q * ref[k]) <= 20 / rho ** 2 * scale), k
+
+
+def test_flat_punch_and_no_load():
+    fp = ax.flat_punch(0.5, 0.02)
+    x, y, z = POINTS.T * 0.5
+    s = interior_stress_tangential(x, y, z, 0.5, 0.2, NU, 0.3, fp, method="quadrature")
+    u = sliding_punch_unit(x / 0.5, y / 0.5, z / 0.5, NU)
+    assert all(np.allclose(s[k], 0.3 * 0.02 / 0.5 * u[k], rtol=1e-15, atol=0) for k in ax.COMPONENTS)
+    for prof, c, mu in ((fp, 0.5, 0.3), (CONE, 0.3, 0.0), (CONE, 0.5, 0.3)):
+        a = 0.5
+        none = interior_stress_tangential(x, y, z, a, c, NU, mu, prof)
+        assert all(np.all(none[k] == 0.0) for k in ax.COMPONENTS)

@@ -1,11 +1,13 @@
-"""The entry points of the axisymmetric family: every surface field of a scenario in one call.
+"""The entry points of the axisymmetric family: every field of a scenario in one call.
 
 ``fields`` (monotonic Cattaneo–Mindlin loading) and ``history_fields`` (a tangential displacement
 history at constant normal load, docs/theory/axisymmetric.md (A65)-(A77)) take the field names, a
 ``Profile`` and plain arrays that broadcast against each other, choose the route with
 ``routes.resolve`` and return ``({name: ndarray}, Route)``.  They own what lies between the kernels
 and a scenario: the stick radius (A32)-(A33), the sticking flat punch, the invariants (A60)-(A61)
-of the stress tensor, dp/dz, the contact-region flag and the validity flag.
+of the stress tensor, dp/dz, the contact-region flag and the validity flag.  Below the surface
+(``fields`` with z > 0, normal load) they call ``interior.interior_stress`` and
+``interior.interior_dpdz`` (docs/theory/interior.md); z = 0 takes the surface kernels.
 
 Units (as the kernels): lengths (x, y, a, the stick radius) in the profile's length unit; stresses,
 von Mises and principal stresses divided by E* and multiplied by ``scale``; dp/dz divided by
@@ -25,17 +27,20 @@ import numpy as np
 from ..flags import validity_flag
 from ..invariants import principal_stresses, singular_limits, von_mises
 from . import history as hist
+from .interior import interior_dpdz, interior_stress
 from .profiles import Profile
-from .routes import Route, resolve
+from .routes import Route, resolve, resolve_depth, resolve_interior
 from .surface import stick_radius, surface_dpdz, surface_stress
 
-__all__ = ["STRESS", "PRINCIPAL", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS", "fields", "history_fields",
+__all__ = ["STRESS", "PRINCIPAL", "INVARIANTS", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS", "fields", "history_fields",
            "contact_radius", "validity_flag"]
 
 STRESS = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz")
 PRINCIPAL = ("sigma_1", "sigma_2", "sigma_3")
-#: fields of a surface point (they need x and y)
-SPATIAL = STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "region", "validity")
+#: the invariants of the stress tensor: von Mises (A60), principal stresses, tau_max = (sigma_1 - sigma_3)/2
+INVARIANTS = ("von_mises",) + PRINCIPAL + ("tau_max",)
+#: fields of a point (they need x and y, and z below the surface)
+SPATIAL = STRESS + INVARIANTS + ("dpdz", "region", "validity")
 #: everything ``fields`` computes
 FIELDS = SPATIAL + ("stick_radius",)
 #: the loads of a history step (no x, y): stick radius, F_x / (mu F_N), energies / (mu F_N delta)
@@ -43,29 +48,38 @@ HISTORY_LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle
 #: everything ``history_fields`` computes
 HISTORY_FIELDS = SPATIAL + HISTORY_LOADS
 #: the fields the validity flag looks at
-_VALUED = STRESS + PRINCIPAL + ("von_mises", "dpdz")
+_VALUED = STRESS + INVARIANTS + ("dpdz",)
+#: the message of a field below the surface under tangential load (the recipe check says the same)
+TANGENTIAL_BELOW = ("fields below the surface under tangential load are not available yet; use ux0 = 0 or "
+                    "mu = 0, or z = 0")
 
 # region flag values (flag_meanings of the scenarios' `region`)
 OUTSIDE, STICK, SLIP, NO_TRACTION = 0, 1, 2, 3
 
 
-def fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu, ux0, method: str = "auto",
-           rtol: float = 1e-10, scale=1.0, dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
-    """The requested surface (z = 0) fields under normal load and monotonic Cattaneo–Mindlin
-    tangential load, and the route taken.
+def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, ux0,
+           method: str = "auto", rtol: float = 1e-10, scale=1.0,
+           dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
+    """The requested fields on the surface (z = 0) under normal load and monotonic
+    Cattaneo–Mindlin tangential load, and below it (z > 0) under normal load, and the route taken
+    (``routes.resolve_depth``).
 
     Parameters
     ----------
     names : any of ``FIELDS``: "sigma_xx" ... "sigma_yz" (stresses, eq. 9 + 24-25,
         docs/theory/axisymmetric.md (A14)-(A16), (A34), (A38)-(A41)), "von_mises" (A60),
-        "sigma_1" ... "sigma_3" (principal stresses, eigenvalues of the tensor), "dpdz" (d p_h/dz
-        at z = 0+, (A24)-(A26) + (A53)-(A54)), "stick_radius" (A32)-(A33), "region" (int8:
-        0 outside the contact r > a, 1 stick r < c, 2 slip, 3 contact without tangential traction,
-        mu = 0 or ux0 = 0) and "validity" (int8: 0 every requested value finite, 1 some value +-inf,
-        2 some value NaN; 0 when no valued field is requested).
+        "sigma_1" ... "sigma_3" (principal stresses, eigenvalues of the tensor), "tau_max"
+        (sigma_1 - sigma_3)/2, "dpdz" (d p_h/dz at z = 0+, (A24)-(A26) + (A53)-(A54)),
+        "stick_radius" (A32)-(A33), "region" (int8: 0 outside the contact r > a, 1 stick r < c,
+        2 slip, 3 contact without tangential traction, mu = 0 or ux0 = 0; of the surface point
+        (x, y), whatever z) and "validity" (int8: 0 every requested value finite, 1 some value
+        +-inf, 2 some value NaN; 0 when no valued field is requested).  Below the surface the
+        stresses are docs/theory/interior.md (I5)-(I17) and dpdz (I24)-(I28).
     profile : a ``Profile`` (``cone``, ``paraboloid``, ``power_law``, ``flat_punch``, ``tabulated``).
     x, y : surface coordinates (x along the tangential load), length unit of the profile; may be
         None when only "stick_radius" is requested.
+    z : depth below the surface (z >= 0, same unit; None: 0).  Where z > 0 the load must be normal
+        (mu = 0 or ux0 = 0), else ValueError (``TANGENTIAL_BELOW``); every value there is finite.
     a : contact radius; nu : Poisson's ratio; mu : coefficient of friction; ux0 : tangential
         rigid-body displacement u_x0 divided by the indentation depth delta.  All broadcast.
     method : "auto", "closed" or "quadrature" (``routes.resolve``); rtol : accuracy of the
@@ -78,6 +92,10 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu,
     stick radius and the region flag keep c = a.
     """
     names = _known(names, FIELDS)
+    spatial = [n for n in names if n in SPATIAL]
+    if z is not None and spatial and np.any(np.asarray(z, dtype=float) > 0.0):
+        return _with_depth(names, profile, x, y, z, a=a, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol,
+                           scale=scale, dpdz_scale=dpdz_scale)
     route = resolve(profile, method, rtol)
     nu, mu, ux0 = (np.asarray(v, dtype=float) for v in (nu, mu, ux0))
     c = stick_radius(a, nu, mu, ux0, profile)
@@ -89,7 +107,6 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu,
     out: dict[str, np.ndarray] = {}
     if "stick_radius" in names:
         out["stick_radius"] = c
-    spatial = [n for n in names if n in SPATIAL]
     if not spatial:
         return out, route
     kw = dict(method=route.kernel, rtol=rtol)
@@ -102,6 +119,42 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu,
                                                np.where((mu_kernel > 0) & (c_kernel == 0), mu_kernel, 0.0), scale)))
     if "validity" in names:
         out["validity"] = validity_flag(*(out[n] for n in out if n in _VALUED))
+    return out, route
+
+
+def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale, dpdz_scale):
+    """``fields`` where some z > 0: the surface fields where z = 0 (the same call as without z, so
+    bit for bit the same values), the interior kernels where z > 0; one validity flag."""
+    route = resolve_depth(profile, method, rtol, getattr(profile, "n", None), z)
+    interior_route = resolve_interior(profile, method, rtol)
+    dpdz_scale = scale if dpdz_scale is None else dpdz_scale
+    arrays = [np.asarray(v, dtype=float) for v in (x, y, z, a, nu, mu, ux0, scale, dpdz_scale)]
+    shape = np.broadcast_shapes(*(v.shape for v in arrays))
+    X, Y, Z, A, NU, MU, UX0, SC, DSC = (np.broadcast_to(v, shape) for v in arrays)
+    deep = Z > 0.0
+    if np.any(~(Z >= 0.0)):
+        raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
+    if np.any(deep & (MU > 0.0) & (UX0 > 0.0)):
+        raise ValueError(TANGENTIAL_BELOW)
+    valued = [n for n in names if n in _VALUED]
+    out: dict[str, np.ndarray] = {}
+    if not np.all(deep) or any(n in names for n in ("stick_radius", "region")):
+        top = [n for n in names if n != "validity" and (n not in _VALUED or not np.all(deep))]
+        out, _ = fields(top, profile, x, y, a=a, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol, scale=scale,
+                        dpdz_scale=dpdz_scale)
+    kw = dict(method=interior_route.kernel, rtol=rtol)
+    P = [v[deep] for v in (X, Y, Z, A, NU)]
+    below = _surface(valued, SC[deep], DSC[deep],
+                     stress=lambda comps: {k: v for k, v in interior_stress(*P, profile, **kw).items() if k in comps},
+                     dpdz=lambda: interior_dpdz(*P, profile, **kw), region=lambda: None)
+    for n in valued:
+        full = np.empty(shape)
+        if n in out:
+            full[~deep] = np.broadcast_to(out[n], shape)[~deep]
+        full[deep] = below[n]
+        out[n] = full
+    if "validity" in names:
+        out["validity"] = validity_flag(*(out[n] for n in valued))
     return out, route
 
 
@@ -190,14 +243,15 @@ def _known(names: Iterable[str], allowed: tuple[str, ...]) -> list[str]:
 def _surface(names: list[str], scale, dpdz_scale, *, stress: Callable[[tuple[str, ...]], dict],
              dpdz: Callable[[], np.ndarray], region: Callable[[], np.ndarray],
              singular: Callable | None = None) -> dict[str, np.ndarray]:
-    """The stress block (the tensor times ``scale``, von Mises (A60), principal stresses), dp/dz
+    """The stress block (the tensor times ``scale``, von Mises (A60), principal stresses, tau_max), dp/dz
     times ``dpdz_scale`` (default ``scale``) and the region flag, each computed only if requested;
     ``stress(components)`` gives the tensor / E*, ``dpdz()`` dp/dz / (E*/length).  Where a
     component is infinite the invariants are the limits of ``singular(tensor, flat indices)`` ->
     (lead, rest), see ``_singular`` (A97)."""
     out: dict[str, np.ndarray] = {}
     want = [n for n in names if n in STRESS]
-    if any(n in names for n in ("von_mises",) + PRINCIPAL):
+    inv = [n for n in INVARIANTS if n in names]
+    if inv:
         want = list(STRESS)
     if want:
         sig = stress(tuple(n.removeprefix("sigma_") for n in want))
@@ -205,10 +259,11 @@ def _surface(names: list[str], scale, dpdz_scale, *, stress: Callable[[tuple[str
         out.update((n, tensor[n]) for n in names if n in STRESS)
         if "von_mises" in names:
             out["von_mises"] = von_mises(*(tensor[s] for s in STRESS))
-        if any(n in names for n in PRINCIPAL):
-            out.update((n, v) for n, v in zip(PRINCIPAL, principal_stresses(*(tensor[s] for s in STRESS)))
-                       if n in names)
-        inv = [n for n in ("von_mises",) + PRINCIPAL if n in names]
+        if any(n in names for n in PRINCIPAL + ("tau_max",)):
+            s1, s2, s3 = principal_stresses(*(tensor[s] for s in STRESS))
+            out.update((n, v) for n, v in zip(PRINCIPAL, (s1, s2, s3)) if n in names)
+            if "tau_max" in names:
+                out["tau_max"] = 0.5 * (s1 - s3)
         if inv and singular is not None:
             shape = np.broadcast_shapes(*(np.shape(tensor[s]) for s in STRESS))
             infinite = np.zeros(shape, dtype=bool)
@@ -216,8 +271,9 @@ def _surface(names: list[str], scale, dpdz_scale, *, stress: Callable[[tuple[str
                 infinite |= np.isinf(tensor[s])
             idx = np.flatnonzero(infinite)
             if idx.size:
-                vm, pr = singular_limits(*singular(tensor, idx))
-                for n, v in zip(("von_mises",) + PRINCIPAL, (vm,) + pr):
+                lead, rest = singular(tensor, idx)
+                vm, pr = singular_limits(lead, rest)
+                for n, v in zip(INVARIANTS, (vm,) + pr + (_tau_limit(vm, rest),)):
                     if n in inv:
                         out[n] = np.array(np.broadcast_to(out[n], shape))
                         out[n].flat[idx] = v
@@ -226,6 +282,19 @@ def _surface(names: list[str], scale, dpdz_scale, *, stress: Callable[[tuple[str
     if "region" in names:
         out["region"] = region()
     return out
+
+
+def _tau_limit(vm, rest) -> np.ndarray:
+    """tau_max at a singular point from the limit ``vm`` of von Mises (``singular_limits``) and the
+    bounded remainder ``rest``: +inf where the leading tensor has a deviatoric part (vm = +inf: its
+    largest and smallest eigenvalues differ), half the eigenvalue spread of ``rest`` where it is
+    isotropic (vm finite), NaN where the limit is unknown (vm NaN)."""
+    tau = np.where(np.isinf(vm), np.inf, np.nan)
+    known = np.flatnonzero(np.isfinite(vm))
+    if known.size:
+        ev = np.linalg.eigvalsh(rest[known])
+        tau[known] = 0.5 * (ev[:, -1] - ev[:, 0])
+    return tau
 
 
 def _singular(profile: Profile, tensor, idx, x, y, a, nu, mu_kernel, mu_lead, scale):

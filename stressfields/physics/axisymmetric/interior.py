@@ -16,21 +16,28 @@ Routes (docs/theory/interior.md):
   (``surface.surface_stress``, docs/theory/axisymmetric.md (A14)-(A22)), which are the limits
   z -> 0+ of the interior field.
 
-Units as the surface kernels: lengths in the profile's unit, stresses divided by E*.  Components
-"xx", "yy", "zz", "xy", "xz", "yz"; tension positive, z into the body.  Pure NumPy/SciPy.
+``interior_dpdz`` gives the depth derivative of the hydrostatic pressure p_h = -trace(sigma)/3 by
+the same routes: the trace of the Hertz and punch fields in closed form, (I24)-(I27), and its
+z-derivative superposed as in (I15), (I28).
+
+Units as the surface kernels: lengths in the profile's unit, stresses divided by E*, dp_h/dz by
+E*/length.  Components "xx", "yy", "zz", "xy", "xz", "yz"; tension positive, z into the body.
+Pure NumPy/SciPy.
 """
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
 from ..quadrature import gauss_jacobi, gauss_legendre, group_by
-from .interior_hertz import COMPONENTS, hertz_unit, punch_unit
+from .interior_hertz import COMPONENTS, _geometry, _one_minus_m_atan, hertz_unit, punch_unit
 from .profiles import Profile
-from .surface import surface_stress
+from .surface import surface_dpdz, surface_stress
 
-__all__ = ["COMPONENTS", "interior_stress", "interior_orders"]
+__all__ = ["COMPONENTS", "interior_stress", "interior_dpdz", "interior_orders", "hertz_dpdz_unit",
+           "punch_dpdz_unit"]
 
 METHODS = ("auto", "closed", "quadrature")
 
@@ -132,12 +139,22 @@ def _superposition(x, y, z, a, nu, profile, rtol):
         for k in COMPONENTS:
             out[k][surf] = s[k]
     inner = np.flatnonzero(~surf)
+    part = _superpose(x[inner], y[inner], z[inner], a[inner], nu[inner], profile, rtol, _STRESS_KERNEL)
+    for k in COMPONENTS:
+        out[k][inner] = part[k]
+    return out
+
+
+def _superpose(x, y, z, a, nu, profile, rtol, kernel):
+    """(I15) at points z > 0 for ``kernel`` = (integrate, names): ``integrate(nodes, profile)`` ->
+    {name: array} sums the punch fields of a group of points over their nodes (``_Nodes``)."""
     n, q = interior_orders(rtol)
-    for lo in range(0, inner.size, _CHUNK):
-        idx = inner[lo:lo + _CHUNK]
-        part = _superpose_chunk(x[idx], y[idx], z[idx], a[idx], nu[idx], profile, n, q)
-        for k in COMPONENTS:
-            out[k][idx] = part[k]
+    out: dict[str, np.ndarray] = {k: np.empty(x.size) for k in kernel[1]}
+    for lo in range(0, x.size, _CHUNK):
+        sl = slice(lo, lo + _CHUNK)
+        part = _superpose_chunk(x[sl], y[sl], z[sl], a[sl], nu[sl], profile, n, q, kernel)
+        for k, v in part.items():
+            out[k][sl] = v
     return out
 
 
@@ -203,18 +220,38 @@ def _grade_after_knots(offsets, knots, rho_s, right):
     return np.sort(np.concatenate([offsets] + extra, axis=1), axis=1)
 
 
-def _superpose_chunk(x, y, z, a, nu, profile, n, q):
+def _superpose_chunk(x, y, z, a, nu, profile, n, q, kernel):
     r = np.hypot(x, y)
     rho_s, offsets = _breakpoints(r, z, a, profile, q)
-    out = {k: np.zeros(x.size) for k in COMPONENTS}
+    out: dict[str, np.ndarray] = {}
     # rows with more panels need more nodes: evaluate points with equal panel counts together
     count = np.sum(np.diff(offsets, axis=1) > 0.0, axis=1)
     for _, idx in group_by(count):
         rho, delta, weights = _rule(rho_s[idx], offsets[idx], profile, n)
-        part = _integrate(x[idx], y[idx], z[idx], nu[idx], r[idx] - rho_s[idx], rho, delta, weights, profile)
-        for k in COMPONENTS:
-            out[k][idx] = part[k]
+        nodes = _Nodes(x[idx], y[idx], z[idx], nu[idx], rho_s[idx], r[idx] - rho_s[idx], rho_s[idx] + offsets[idx, 0],
+                       a[idx], rho, delta, weights, n + 4)
+        for k, v in kernel[0](nodes, profile).items():
+            out.setdefault(k, np.zeros(x.size))[idx] = v
     return out
+
+
+class _Nodes(NamedTuple):
+    """One group of points and their quadrature rule: coordinates, rho_s, r - rho_s, the end b1 of
+    the first panel, the contact radius, nodes rho, offsets delta = rho - rho_s, weights (rows),
+    and the number of nodes of the first panel (the first columns)."""
+
+    x: np.ndarray
+    y: np.ndarray
+    z: np.ndarray
+    nu: np.ndarray
+    rho_s: np.ndarray
+    r_minus_rho_s: np.ndarray
+    b1: np.ndarray
+    a: np.ndarray
+    rho: np.ndarray
+    delta: np.ndarray
+    weights: np.ndarray
+    first: int
 
 
 def _rule(rho_s, offsets, profile, n):
@@ -250,17 +287,132 @@ def _rule(rho_s, offsets, profile, n):
     return rho, delta, np.concatenate([first_w, weights], axis=1)
 
 
-def _integrate(x, y, z, nu, r_minus_rho_s, rho, delta, weights, profile):
-    """sum_j w_j g'(rho_j) K_FP(x; rho_j), K_FP(x; rho) = punch_unit(x / rho) / rho (I15), with
-    r / rho - 1 = (r - rho_s - delta) / rho free of the rounding of r / rho."""
-    live = weights > 0.0
-    # the nodes of zero-length panels and nodes so close to 0 that x / rho would overflow carry no
-    # weight (a punch of radius rho contributes O(rho^2) there)
-    reach = np.hypot(np.hypot(x, y), z)[:, None]
-    live &= rho > 1e-150 * reach
-    rho = np.where(live, rho, 1.0)
-    rm1 = np.where(live, (r_minus_rho_s[:, None] - delta) / rho, 0.0)
+def _live(nd: _Nodes):
+    """The nodes that carry weight, rho (1 elsewhere) and r / rho - 1 = (r - rho_s - delta) / rho,
+    free of the rounding of r / rho.  The nodes of zero-length panels and nodes so close to 0 that
+    x / rho would overflow carry no weight (a punch of radius rho contributes O(rho^2) there)."""
+    live = nd.weights > 0.0
+    reach = np.hypot(np.hypot(nd.x, nd.y), nd.z)[:, None]
+    live &= nd.rho > 1e-150 * reach
+    rho = np.where(live, nd.rho, 1.0)
+    rm1 = np.where(live, (nd.r_minus_rho_s[:, None] - nd.delta) / rho, 0.0)
+    return live, rho, rm1
+
+
+def _integrate_stress(nd: _Nodes, profile) -> dict[str, np.ndarray]:
+    """sum_j w_j g'(rho_j) K_FP(x; rho_j), K_FP(x; rho) = punch_unit(x / rho) / rho (I15)."""
+    live, rho, rm1 = _live(nd)
     dg = np.where(live, profile.dg(rho), 0.0)
-    k = punch_unit(x[:, None] / rho, y[:, None] / rho, z[:, None] / rho, nu[:, None], rm1=rm1)
-    w = np.where(live, weights * dg / rho, 0.0)
+    k = punch_unit(nd.x[:, None] / rho, nd.y[:, None] / rho, nd.z[:, None] / rho, nd.nu[:, None], rm1=rm1)
+    w = np.where(live, nd.weights * dg / rho, 0.0)
     return {c: np.sum(np.where(live, v, 0.0) * w, axis=1) for c, v in k.items()}
+
+
+# -- the depth derivative of the hydrostatic pressure (I24)-(I28) ------------------------------
+
+def interior_dpdz(x, y, z, a, nu, profile: Profile, *, method: str = "auto", rtol: float = 1e-10) -> np.ndarray:
+    """d p_h/dz / (E*/length) at (x, y, z), z >= 0, p_h = -trace(sigma)/3, under the rigid
+    axisymmetric ``profile`` pressed to the contact radius ``a`` (normal load, no friction);
+    docs/theory/interior.md (I24)-(I28).
+
+    Routes and accuracy as ``interior_stress``: closed forms (I26)-(I27) for the paraboloid (and
+    the power law n = 2) and the flat punch, relative error at most 1e-12 of |value| everywhere the
+    value is finite (where the value passes through zero: of the largest term of its sum); else the
+    1-D superposition (I28) of the punch derivative, |error| <= rtol * max(|value|, p_m/a).  On the
+    surface z = 0 the surface kernel (docs/theory/axisymmetric.md (A24)-(A27)), the limit z -> 0+,
+    with its +-inf at the contact edge and at a conical tip."""
+    if method not in METHODS:
+        raise ValueError(f"unknown interior method {method!r}; allowed: {', '.join(METHODS)}")
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z, a, nu)))
+    shape = arrays[0].shape
+    x, y, z, a, nu = (np.ascontiguousarray(v).ravel() for v in arrays)
+    _validate(z, a, nu, profile)
+    family = _closed_family(profile, method)
+    out = np.empty(x.size)
+    surf = z == 0.0
+    if np.any(surf):
+        kernel = "closed" if family is not None else "quadrature"
+        out[surf] = surface_dpdz(x[surf], y[surf], a[surf], a[surf], nu[surf], 0.0, profile, method=kernel,
+                                 rtol=max(rtol, 1e-14))
+    i = np.flatnonzero(~surf)
+    X, Y, Z, A, NU = x[i], y[i], z[i], a[i], nu[i]
+    if family == "paraboloid":
+        out[i] = hertz_dpdz_unit(X / A, Y / A, Z / A, NU) * (2.0 / (math.pi * profile.closed[1]))
+    elif family == "flat_punch":
+        out[i] = punch_dpdz_unit(X / A, Y / A, Z / A, NU) * (profile.depth_ / (A * A))
+    else:
+        out[i] = _superpose(X, Y, Z, A, NU, profile, rtol, _DPDZ_KERNEL)["dpdz"]
+    return out.reshape(shape)
+
+
+def _f_prime(M):
+    """F'(M) for F(M) = 1 - M arctan(1/M) (I4), (I25): -arctan(1/M) + M/(1 + M^2) for M <= 1 (no
+    cancellation: arctan(1/M) >= pi/4 > M/(1+M^2) - 1/4); for M > 1 the two terms approach 1/M and
+    cancel to -2/(3 M^3), so (F (1 + M^2) - 1)/(M (1 + M^2)), whose numerator tends to -2/3."""
+    F = _one_minus_m_atan(M)
+    opm = 1.0 + M * M
+    with np.errstate(invalid="ignore", divide="ignore"):
+        far = (F * opm - 1.0) / np.where(M > 1.0, M * opm, 1.0)
+    near = -(0.5 * math.pi - np.arctan(np.minimum(M, 1.0))) + M / opm
+    return np.where(M <= 1.0, near, far), F
+
+
+def hertz_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
+    """d p_h/dz of the Hertz field, divided by p0/a, at coordinates divided by the contact radius:
+    p_h = (2/3)(1 + nu) N F(M) (I24) and its z-derivative (I25)-(I26).  Finite for z > 0 and on
+    the surface off the edge ring.  Closed form: relative error at most 1e-12 of |value| where
+    the value is finite (where it passes through zero: of the larger of the two terms).  ``rm1``:
+    r - 1 without rounding, optional (see ``_geometry``)."""
+    nu = np.asarray(nu, dtype=float)
+    g = _geometry(*np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z))), rm1)
+    M, N, S, Q = g["M"], g["N"], g["S"], g["Q"]
+    fp, F = _f_prime(M)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        n_z = M * Q / S                       # (I25): no M - N z cancellation
+        m_z = N * (1.0 + M * M) / S
+    return (2.0 / 3.0) * (1.0 + nu) * (n_z * F + N * fp * m_z)
+
+
+def punch_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
+    """d p_h/dz of the flat punch of radius 1 pressed to depth 1 into a half-space with E* = 1, at
+    coordinates divided by the punch radius: p_h = 2(1 + nu) N/(3 pi S) (I24) and (I27).  Finite
+    for z > 0 and on the surface off the edge ring (NaN there: S = 0).  Closed form: relative
+    error at most 1e-12 of |value| where the value is finite (where it passes through zero: of
+    the largest term of the bracket).  ``rm1``: r - 1 without rounding (see ``_geometry``)."""
+    nu = np.asarray(nu, dtype=float)
+    g = _geometry(*np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z))), rm1)
+    M, N, S = g["M"], g["N"], g["S"]
+    m2, n2 = M * M, N * N
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return 2.0 * (1.0 + nu) / (3.0 * math.pi) * M / S ** 3 * (m2 - 3.0 * n2 * (1.0 + m2) + n2 * n2)
+
+
+def _integrate_dpdz(nd: _Nodes, profile) -> dict[str, np.ndarray]:
+    """(I28).  Where the layer lies well inside the contact (d < rho_s/2, d = |(r, z) - (rho_s, 0)|)
+    the punch derivative K_d = (1/(pi rho)) d/drho H_d(x/rho) (H_d = ``hertz_dpdz_unit``) is
+    integrated by parts against the constant c = g'(rho_s) on [b1, a]: the integrand becomes
+    (g' - c) K_d + c H_d(x/rho)/(pi rho^2), plus the end values c (H_d(x/a)/a - H_d(x/b1)/b1)/pi.
+    Why: K_d ~ d^(-3/2) next to the layer, and the value is what is left of parts of size
+    d^(-1/2); at z = 1e-10 a the rule of rtol = 1e-8 left 1e-7 p_m/a, by parts 5e-13 (paraboloid
+    against (I26) at r/a = 0.3, 0.65, 0.99)."""
+    live, rho, rm1 = _live(nd)
+    x, y, z, nu = nd.x[:, None], nd.y[:, None], nd.z[:, None], nd.nu[:, None]
+    d = np.hypot(nd.r_minus_rho_s, nd.z)
+    layer = 2.0 * d < nd.rho_s          # else the parts are no larger than the value: nothing to gain
+    c = np.where(layer, profile.dg(np.where(layer, nd.rho_s, 1.0)), 0.0)[:, None]
+    after = np.arange(rho.shape[1])[None, :] >= nd.first              # the panels [b1, a]
+    c_after = np.where(after, c, 0.0)
+    dg = np.where(live, profile.dg(rho), 0.0)
+    kd = punch_dpdz_unit(x / rho, y / rho, z / rho, nu, rm1=rm1) / (rho * rho)
+    hd = np.where(after & live, hertz_dpdz_unit(x / rho, y / rho, z / rho, nu, rm1=rm1), 0.0) / (rho * rho)
+    f = np.where(live, (dg - c_after) * kd + c_after * hd / math.pi, 0.0)
+    inner = np.sum(f * nd.weights, axis=1)
+    b1, a = nd.b1, nd.a
+    ends = (hertz_dpdz_unit(nd.x / a, nd.y / a, nd.z / a, nd.nu, rm1=(np.hypot(nd.x, nd.y) - a) / a) / a
+            - hertz_dpdz_unit(nd.x / b1, nd.y / b1, nd.z / b1, nd.nu) / np.where(b1 > 0.0, b1, 1.0))
+    return {"dpdz": inner + np.where(c[:, 0] != 0.0, c[:, 0] * ends / math.pi, 0.0)}
+
+
+#: (the integral of a group of points, its names) of (I15) for the stress tensor and of (I28) for dp_h/dz
+_STRESS_KERNEL = (_integrate_stress, COMPONENTS)
+_DPDZ_KERNEL = (_integrate_dpdz, ("dpdz",))

@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-__all__ = ["COMPONENTS", "hertz_unit", "punch_unit", "sliding_unit"]
+__all__ = ["COMPONENTS", "hertz_unit", "punch_unit", "sliding_unit", "sliding_punch_unit"]
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
 
@@ -273,11 +273,13 @@ def sliding_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     return _sliding_cartesian(x, y, z, nu, _sliding_scalars(g), g["N"])
 
 
-def _sliding_cartesian(x, y, z, nu, s, N):
+def _sliding_cartesian(x, y, z, nu, s, N=None):
     """(I21): the Cartesian components from the radial functions; the shear sigma_xz as the sum of
-    two terms of one sign (-N H / 2 and -x^2 z D^2 Phi / (2 pi)), so that the far-field
-    cancellation of Phi_z against z D Phi (exact for a point load) never happens in rounding."""
+    two terms of one sign ((Phi_z - z D Phi)/(2 pi), which is -N H / 2 for the sliding field or
+    s["X"] if given, and -x^2 z D^2 Phi / (2 pi)), so that the far-field cancellation of Phi_z
+    against z D Phi (exact for a point load) never happens in rounding."""
     x2, y2 = x * x, y * y
+    xz0 = s["X"] if "X" in s else -0.5 * N * s["H"]
     P, Dg, Dgz = s["P"], s["Dg"], s["Dgz"]
     k = 1.0 / (4.0 * math.pi)
     xx = 2.0 * x * (2.0 * P - 3.0 * z * Dgz - x2 * s["zD2gz"] + 2.0 * nu * (3.0 * Dg + x2 * s["D2g"])) \
@@ -285,4 +287,85 @@ def _sliding_cartesian(x, y, z, nu, s, N):
     yy = 2.0 * x * (-z * Dgz - y2 * s["zD2gz"] + 2.0 * nu * (Dg + y2 * s["D2g"])) + 4.0 * nu * x * P
     xy = y * (2.0 * P - 2.0 * (z * Dgz + x2 * s["zD2gz"]) + 4.0 * nu * (Dg + x2 * s["D2g"]))
     return {"xx": k * xx, "yy": k * yy, "zz": -2.0 * k * x * s["zgzzz"], "xy": k * xy,
-            "xz": -0.5 * N * s["H"] - 2.0 * k * x2 * s["zDgzz"], "yz": -2.0 * k * x * y * s["zDgzz"]}
+            "xz": xz0 - 2.0 * k * x2 * s["zDgzz"], "yz": -2.0 * k * x * y * s["zDgzz"]}
+
+
+# -- the sliding punch: traction (1/pi)/sqrt(1 - r^2) along +x, the rho-derivative of rho T(x/rho) --
+
+def _sliding_punch_scalars(g):
+    """The radial functions of (I19) for the traction 1/sqrt(1 - r^2) (a = 1), whose harmonic
+    potential is Phi = 2 pi arctan(1/M): docs/theory/interior.md (I30)-(I31).  Each is f = k f_s -
+    (r d/dr + z d/dz) f_s of the sliding one f_s of degree k, in closed form; every 1/S comes with
+    powers of M and N that keep the product of order S^(-1/2) (the edge-ring singularity)."""
+    M, N, S = g["M"], g["N"], g["S"]
+    z = g["z"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        inv_s = np.where(S > 0.0, 1.0 / np.where(S > 0.0, S, 1.0), 0.0)
+    m2, n2 = M * M, N * N
+    opm, opn = 1.0 + m2, 1.0 + N
+    num = N - m2 * (2.0 + N)
+    bracket = 2.0 * (m2 - n2) * inv_s + 4.0 * m2 / opm - 2.0 * N / opn
+    zd2gz = 2.0 * math.pi * (M * N * inv_s) * ((-N - 4.0 * m2 - m2 * N) - num * bracket) * inv_s / (opm * opn) ** 2
+    dgz = 2.0 * math.pi * num * inv_s / (opm * opn) ** 2
+    m3s = M * (m2 * inv_s)
+    return dict(
+        P=-2.0 * math.pi * M * inv_s / opm,                                      # D Phi
+        X=-N * inv_s / opm,                                                      # (Phi_z - z D Phi)/(2 pi)
+        Dg=z * dgz + 2.0 * math.pi * m3s / (opm * opm),
+        D2g=zd2gz + 2.0 * math.pi * m3s * ((m2 + 5.0 * n2 + m2 * (n2 - 3.0 * m2)) * inv_s) * inv_s / opm ** 3,
+        Dgz=dgz,
+        zD2gz=zd2gz,
+        zDgzz=-2.0 * math.pi * (m2 * inv_s) * (N * inv_s) * ((3.0 * n2 - m2 + m2 * (n2 - 3.0 * m2)) * inv_s)
+        / (opm * opm),                                                           # z D^2 Phi
+        zgzzz=2.0 * math.pi * (M * inv_s) * (n2 * inv_s) * ((3.0 * m2 - n2) * inv_s),   # z D Phi_z
+    )
+
+
+def sliding_punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
+    """The sliding flat punch: stress tensor below the surface under the tangential traction
+    q = 1/(pi sqrt(1 - r^2)) along +x (sigma_xz = -q at z = 0; the friction traction mu p of a
+    flat punch of radius 1 pressed to depth 1 into a half-space with E* = 1, per mu), at
+    coordinates divided by the punch radius; equal to (1/pi)[T - (x d/dx + y d/dy + z d/dz) T]
+    with T = ``sliding_unit``, docs/theory/interior.md (I30)-(I32).  No division by r.  On the
+    edge ring r = 1, z = 0 the values of (I32).  Closed form: relative error at most 1e-12 of
+    |value| everywhere the value is finite.  ``rm1``: r - 1 without rounding, optional (see
+    ``_geometry``)."""
+    x, y, z = _coords(x, y, z)
+    nu = np.asarray(nu, dtype=float)
+    g = _geometry(x, y, z, rm1)
+    with np.errstate(invalid="ignore"):
+        k = _sliding_cartesian(x, y, z, nu, _sliding_punch_scalars(g))
+    out = {c: v / math.pi for c, v in k.items()}
+    _sliding_edge_ring(out, x, y, nu, g["S"] == 0.0)
+    return out
+
+
+def _sliding_edge_ring(out, x, y, nu, ring):
+    """Values on the sliding punch's edge ring (S = 0), docs/theory/interior.md (I32): 0 where the
+    component vanishes by symmetry (odd in x: xx, yy, zz, yz; odd in y: xy, yz), else the sign of
+    the leading d^(-1/2) term over the directions omega into the body (s = d cos omega, z =
+    d sin omega, 0 < omega < pi, probed at d = 1e-10 on 181 directions): one sign everywhere with
+    a leading term above 1e-3 of the largest one gives +-inf, anything else NaN (the limit depends
+    on the direction).  sigma_xz is -inf and sigma_xx -inf sgn x on the whole ring; the others
+    depend on the position on the ring and on nu."""
+    idx = np.flatnonzero(np.broadcast_to(ring, out["xx"].shape))
+    if not idx.size:
+        return
+    xs, ys = (np.broadcast_to(v, out["xx"].shape).ravel()[idx] for v in (x, y))
+    nus = np.broadcast_to(nu, out["xx"].shape).ravel()[idx]
+    d = 1e-10
+    om = np.linspace(0.0, math.pi, 183)[1:-1]
+    rr = 1.0 + d * np.cos(om)
+    g = _geometry(xs[:, None] * rr, ys[:, None] * rr, np.broadcast_to(d * np.sin(om), (idx.size, om.size)),
+                  np.broadcast_to(d * np.cos(om), (idx.size, om.size)))
+    probe = _sliding_cartesian(xs[:, None] * rr, ys[:, None] * rr, g["z"], nus[:, None], _sliding_punch_scalars(g))
+    big = np.max([np.max(np.abs(v), axis=1) for v in probe.values()], axis=0)
+    zero = {"xx": xs == 0.0, "yy": xs == 0.0, "zz": xs == 0.0, "xy": ys == 0.0, "xz": np.zeros(idx.size, bool),
+            "yz": (xs == 0.0) | (ys == 0.0)}
+    for c in COMPONENTS:
+        v = probe[c]
+        tol = 1e-3 * big[:, None]
+        sign = np.where(np.all(v < -tol, axis=1), -1.0, np.where(np.all(v > tol, axis=1), 1.0, math.nan))
+        flat = out[c].reshape(-1).copy() if out[c].shape else out[c].reshape(1).copy()
+        flat[idx] = np.where(zero[c], 0.0, sign * math.inf)
+        out[c] = flat.reshape(out[c].shape)

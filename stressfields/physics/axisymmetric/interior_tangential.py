@@ -6,15 +6,20 @@ along +x on the half-space, sigma_xz(z = 0) = -q with q = mu [p(r; a) - p(r; c)]
 radius (c = 0 gross slip, c = a no tangential load).  The full field is the normal part
 (``interior.interior_stress``) plus the part returned here.
 
-Route (docs/theory/interior.md (I18)-(I23)):
+Routes (docs/theory/interior.md (I18)-(I23), (I30)-(I33)):
 
 * ``closed``: the paraboloid, mu p0 [T(x/a) - (c/a) T(x/c)] with T the Hertz sliding field per q0
-  (Hamilton & Goodman 1966; Hamilton 1983; Cattaneo 1938; Mindlin 1949), ``sliding_unit``.
-  Accuracy: closed form, relative error at most 1e-12 of |value| everywhere the value is finite,
-  far field and next to edges included.
-
-Other profiles (cone, power law n != 2, tabulated, flat punch) need the sliding-punch kernel
-superposed as in (I15); it is not available yet and those profiles are refused.
+  (Hamilton & Goodman 1966; Hamilton 1983; Cattaneo 1938; Mindlin 1949), ``sliding_unit``, (I23);
+  the flat punch, mu (delta/a) K_T(x/a) with K_T the sliding punch ``sliding_punch_unit`` (I33)
+  (for every c < a: a flat punch slides or sticks as a whole).  Accuracy: closed form, relative
+  error at most 1e-12 of |value| everywhere the value is finite, far field and next to edges
+  included.
+* ``quadrature``: every profile as mu [Sigma_T(a) - Sigma_T(c)], Sigma_T(b) = int_0^b K_T(x; rho)
+  g'(rho) d rho, the superposition of sliding punches (I33) on the panels of the normal route
+  (``interior._superpose``, (I16)-(I17)).  Accuracy: |error| <= rtol * max(|value|, mu p_m) with
+  p_m the mean contact pressure (measured in docs/theory/interior.md section 5).  On the surface
+  z = 0 the tangential part of the surface kernels (docs/theory/axisymmetric.md (A34)-(A41)),
+  the limit z -> 0+, with their flags.
 
 Units as ``interior_stress``: lengths in the profile's unit, stresses divided by E*.  Components
 "xx", "yy", "zz", "xy", "xz", "yz"; tension positive, z into the body.  Pure NumPy.
@@ -25,12 +30,14 @@ import math
 
 import numpy as np
 
-from .interior_hertz import COMPONENTS, sliding_unit
+from .interior import _live, _Nodes, _superpose
+from .interior_hertz import COMPONENTS, sliding_punch_unit, sliding_unit
 from .profiles import Profile
+from .surface import surface_stress
 
 __all__ = ["COMPONENTS", "interior_stress_tangential"]
 
-METHODS = ("auto", "closed")
+METHODS = ("auto", "closed", "quadrature")
 
 
 def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method: str = "auto",
@@ -38,23 +45,50 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
     """Tangential part of the stress tensor / E* at (x, y, z), z >= 0 the depth, for the contact
     radius ``a``, stick radius ``c`` (0 <= c <= a; c = 0 gross slip) and coefficient of friction
     ``mu`` >= 0 (Cattaneo–Mindlin, traction along +x on the half-space); docs/theory/interior.md
-    (I23).  x, y, z, a, c, nu, mu broadcast; returns {"xx", "yy", "zz", "xy", "xz", "yz": ndarray}.
+    (I23), (I33).  x, y, z, a, c, nu, mu broadcast; returns {"xx", "yy", "zz", "xy", "xz", "yz": ndarray}.
 
-    ``method``: "auto" or "closed" (paraboloid and power law n = 2: the closed form (I23),
-    relative error at most 1e-12 of |value| everywhere the value is finite).  Every other profile
-    raises ValueError (its route, the superposition of sliding punches, is not available).
-    ``rtol`` is accepted for the signature shared with ``interior_stress`` and checked; the closed
-    form does not use it.  The field is finite and continuous everywhere in z >= 0, the edge
-    rings r = a and r = c at z = 0 included."""
+    ``method``: "auto" (the closed form for the paraboloid, the power law n = 2 and the flat punch,
+    else the 1-D superposition), "closed" (refused for cone, power law n != 2 and tabulated
+    profiles) or "quadrature" (the 1-D superposition of sliding punches for every profile; the flat
+    punch always uses its closed form).  Closed forms: relative error at most 1e-12 of |value|
+    everywhere the value is finite; 1-D route: |error| <= rtol * max(|value|, mu p_m).
+
+    Singular points: the flat punch's edge ring (r = a, z = 0), where sigma_xz = -inf and the other
+    components follow (I32) (+-inf, 0 by symmetry, or NaN where the limit depends on the direction);
+    on the surface z = 0 of the 1-D route the values and flags of the surface kernels (e.g. NaN for
+    the in-plane components at a conical tip in gross slip).  Elsewhere finite and continuous."""
     if method not in METHODS:
         raise ValueError(f"unknown tangential interior method {method!r}; allowed: {', '.join(METHODS)}")
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
-    R = _paraboloid_radius(profile)
     arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z, a, c, nu, mu)))
     shape = arrays[0].shape
     x, y, z, a, c, nu, mu = (np.ascontiguousarray(v).ravel() for v in arrays)
-    _validate(z, a, c, nu, mu)
+    _validate(z, a, c, nu, mu, profile)
+    family = _family(profile, method)
+    if family == "paraboloid":
+        out = _paraboloid(x, y, z, a, c, nu, mu, float(profile.closed[1]))
+    elif family == "flat_punch":
+        k = np.where(c < a, mu * profile.depth_ / a, 0.0)
+        out = {key: k * v for key, v in sliding_punch_unit(x / a, y / a, z / a, nu).items()}
+    else:
+        out = _superposition(x, y, z, a, c, nu, mu, profile, rtol)
+    return {key: out[key].reshape(shape) for key in COMPONENTS}
+
+
+def _family(profile, method):
+    """"paraboloid", "flat_punch" or None (the 1-D route)."""
+    closed = profile.closed
+    family = closed[0] if closed is not None and closed[0] in ("paraboloid", "flat_punch") else None
+    if profile.kind == "flat_punch":
+        return "flat_punch"              # g' is a Dirac delta at a: the kernel itself
+    if method == "closed" and family is None:
+        raise ValueError(f"method='closed': no tangential interior closed form for the {profile.kind} profile "
+                         f"{profile!r}; use method='quadrature'")
+    return family if method in ("auto", "closed") else None
+
+
+def _paraboloid(x, y, z, a, c, nu, mu, R):
     k = mu * 2.0 * a / (math.pi * R)                     # mu p0 per E*, (I1)
     slide = sliding_unit(x / a, y / a, z / a, nu)
     out = {key: k * v for key, v in slide.items()}
@@ -64,18 +98,64 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
         stick = sliding_unit(x[part] / cp, y[part] / cp, z[part] / cp, nu[part])
         for key in COMPONENTS:
             out[key][part] -= k[part] * (cp / a[part]) * stick[key]
-    return {key: out[key].reshape(shape) for key in COMPONENTS}
+    return out
 
 
-def _paraboloid_radius(profile):
-    closed = profile.closed
-    if closed is None or closed[0] != "paraboloid":
-        raise ValueError(f"the tangential interior field is available for the paraboloid only; "
-                         f"no route for the {profile.kind} profile {profile!r}")
-    return float(closed[1])
+# -- the 1-D superposition of sliding punches (I33) ---------------------------------------------
+
+def _integrate_sliding(nd: _Nodes, profile) -> dict[str, np.ndarray]:
+    """sum_j w_j g'(rho_j) K_T(x; rho_j), K_T(x; rho) = sliding_punch_unit(x / rho) / rho (I33)."""
+    live, rho, rm1 = _live(nd)
+    dg = np.where(live, profile.dg(rho), 0.0)
+    k = sliding_punch_unit(nd.x[:, None] / rho, nd.y[:, None] / rho, nd.z[:, None] / rho, nd.nu[:, None], rm1=rm1)
+    w = np.where(live, nd.weights * dg / rho, 0.0)
+    return {comp: np.sum(np.where(live, v, 0.0) * w, axis=1) for comp, v in k.items()}
 
 
-def _validate(z, a, c, nu, mu):
+_SLIDING_KERNEL = (_integrate_sliding, COMPONENTS)
+
+
+def _superposition(x, y, z, a, c, nu, mu, profile, rtol):
+    out = {k: np.zeros(x.size) for k in COMPONENTS}
+    act = (mu > 0.0) & (c < a)
+    surf = act & (z == 0.0)
+    if np.any(surf):
+        s = _surface_part(x[surf], y[surf], a[surf], c[surf], nu[surf], mu[surf], profile, rtol)
+        for k in COMPONENTS:
+            out[k][surf] = s[k]
+    inner = np.flatnonzero(act & (z > 0.0))
+    if not inner.size:
+        return out
+    xi, yi, zi, nui = x[inner], y[inner], z[inner], nu[inner]
+    total = _superpose(xi, yi, zi, a[inner], nui, profile, rtol, _SLIDING_KERNEL)
+    stick = np.flatnonzero(c[inner] > 0.0)
+    if stick.size:
+        inside = _superpose(xi[stick], yi[stick], zi[stick], c[inner][stick], nui[stick], profile, rtol,
+                            _SLIDING_KERNEL)
+        for k in COMPONENTS:
+            total[k][stick] -= inside[k]
+    for k in COMPONENTS:
+        out[k][inner] = mu[inner] * total[k]
+    return out
+
+
+def _surface_part(x, y, a, c, nu, mu, profile, rtol):
+    """The tangential part of the surface kernels at z = 0: sigma_xz as returned (it has no normal
+    part), the in-plane components as the difference of the total and the normal part; where the
+    normal part is infinite (a conical or sharper tip, r = 0) the tangential in-plane part is 0 in
+    the stick zone (c > 0) and NaN in gross slip (direction-dependent, as the surface kernels)."""
+    kw = dict(method="quadrature", rtol=max(rtol, 1e-14))
+    total = surface_stress(x, y, a, c, nu, mu, profile, **kw)
+    normal = surface_stress(x, y, a, a, nu, 0.0, profile, components=("xx", "yy", "xy"), **kw)
+    out = {"xz": total["xz"], "zz": np.zeros(x.size), "yz": np.zeros(x.size)}
+    for k in ("xx", "yy", "xy"):
+        with np.errstate(invalid="ignore"):
+            diff = total[k] - normal[k]
+        out[k] = np.where(np.isfinite(normal[k]), diff, np.where(c > 0.0, 0.0, math.nan))
+    return out
+
+
+def _validate(z, a, c, nu, mu, profile):
     if np.any(~(z >= 0.0)):
         raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
     if np.any(~(a > 0.0)) or not np.all(np.isfinite(a)):
@@ -86,3 +166,7 @@ def _validate(z, a, c, nu, mu):
         raise ValueError("nu (Poisson's ratio) must be in [0, 0.5]")
     if np.any(~(mu >= 0.0)) or not np.all(np.isfinite(mu)):
         raise ValueError("mu (coefficient of friction) must be finite and >= 0")
+    if profile.kind == "flat_punch" and not np.allclose(a, profile.radius, rtol=1e-12, atol=0.0):
+        raise ValueError(f"flat punch: the contact radius a must equal the punch radius {profile.radius!r}")
+    if np.any(a > profile.max_radius * (1.0 + 1e-12)):
+        raise ValueError(f"a (contact radius) exceeds the end of the tabulated profile, r = {profile.max_radius!r}")

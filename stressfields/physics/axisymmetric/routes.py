@@ -12,8 +12,19 @@ The one place that decides "a closed form exists" (docs/theory/axisymmetric.md (
 * ``closed`` and ``quadrature`` force a route; the kernels refuse ``closed`` where no closed form
   exists, and a flat punch always uses its closed forms (its g' is a Dirac delta).
 
+Below the surface (z > 0, normal load; docs/theory/interior.md) ``resolve_interior`` decides:
+
+* the paraboloid (and the power law n = 2) and the flat punch have closed forms (I5)-(I14),
+  (I24)-(I27); the flat punch always uses them;
+* every other profile (cone, power law n != 2, tabulated) is the one-dimensional superposition of
+  flat-punch fields (I15)-(I17), (I28) by Gauss quadrature, as is the paraboloid under
+  ``quadrature``; ``closed`` is refused where no interior closed form exists.
+
+``resolve_depth`` joins the two for a set of depths (z = 0 takes the surface route).
+
 The strings of ``resolve`` are written into files; they state the accuracy contract, proved by
-tests/physics/test_axisymmetric_contract.py and tests/physics/test_axisymmetric_tabulated.py.
+tests/physics/test_axisymmetric_contract.py, tests/physics/test_axisymmetric_tabulated.py,
+tests/physics/test_interior_superposition.py and tests/test_scenario_interior.py.
 """
 from __future__ import annotations
 
@@ -21,7 +32,9 @@ from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "Route", "power_law_family", "has_closed_form", "resolve"]
+__all__ = ["METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
+           "power_law_family", "has_closed_form", "has_interior_closed_form", "resolve", "resolve_interior",
+           "resolve_depth"]
 
 #: every method the family offers, the default first
 METHODS: tuple[str, ...] = ("auto", "closed", "quadrature")
@@ -33,6 +46,12 @@ POWER_LAW_CLOSED: dict[float, str] = {1.0: "cone", 2.0: "paraboloid"}
 _CLOSED = ("closed form", "relative error at most 1e-12 of |value| everywhere the value is finite, far field and "
                            "next to edges included")
 _QUADRATURE = "one-dimensional Gauss quadrature of the MDR integrals"
+_SUPERPOSITION = ("1-D superposition of flat-punch fields below the surface (Gauss quadrature, "
+                  "docs/theory/interior.md (I15)-(I17), (I28))")
+#: profile kinds with closed forms below the surface (a power law with n = 2 too)
+INTERIOR_CLOSED_KINDS: tuple[str, ...] = ("paraboloid", "flat_punch")
+#: the smallest rtol the superposition below the surface reaches (its rounding floor, about 1e-13)
+INTERIOR_RTOL = 1e-12
 
 
 class Route(NamedTuple):
@@ -45,7 +64,7 @@ class Route(NamedTuple):
     @property
     def kernel(self) -> str:
         """The ``method`` argument of the kernels: "closed" or "quadrature"."""
-        return "closed" if self.route == _CLOSED[0] else "quadrature"
+        return "closed" if self.route in (_CLOSED[0], f"{_CLOSED[0]} below the surface") else "quadrature"
 
 
 def power_law_family(n) -> str | None:
@@ -73,5 +92,46 @@ def resolve(profile, method: str, rtol: float, n=None) -> Route:
         raise ValueError(f"unknown axisymmetric method {method!r}; allowed: {', '.join(METHODS)}")
     if method == "closed" or (method == "auto" and has_closed_form(profile, n)):
         return Route(*_CLOSED)
-    return Route(_QUADRATURE, f"|error| <= rtol = {rtol:g} times max(|value|, the variable's normalisation scale: "
-                              "p_m for stresses, p_m/a for dpdz)")
+    return Route(_QUADRATURE, _quadrature_accuracy(rtol))
+
+
+def _quadrature_accuracy(rtol: float) -> str:
+    return (f"|error| <= rtol = {rtol:g} times max(|value|, the variable's normalisation scale: p_m for stresses, "
+            "p_m/a for dpdz)")
+
+
+def has_interior_closed_form(kind: str, n=None) -> bool:
+    """Whether the field below the surface of a profile of this kind has closed forms
+    (docs/theory/interior.md (I5)-(I14), (I24)-(I27)): paraboloid, power law n = 2, flat punch."""
+    return kind in INTERIOR_CLOSED_KINDS or (kind == "power_law" and power_law_family(n) == "paraboloid")
+
+
+def resolve_interior(profile, method: str, rtol: float, n=None) -> Route:
+    """The route below the surface (z > 0, normal load) and its accuracy; arguments as ``resolve``.
+    ``closed`` where no interior closed form exists raises ValueError."""
+    if not isinstance(profile, str):
+        profile, n = profile.kind, getattr(profile, "n", None)
+    if method not in METHODS:
+        raise ValueError(f"unknown axisymmetric method {method!r}; allowed: {', '.join(METHODS)}")
+    closed = has_interior_closed_form(profile, n)
+    if method == "closed" and not closed:
+        raise ValueError(f"method 'closed' has no closed form below the surface for profile {profile!r}; "
+                         "use 'auto' or 'quadrature'")
+    if profile == "flat_punch" or (closed and method != "quadrature"):
+        return Route(f"{_CLOSED[0]} below the surface", _CLOSED[1])
+    return Route(_SUPERPOSITION, _quadrature_accuracy(rtol))
+
+
+def resolve_depth(profile, method: str, rtol: float, n=None, z=None) -> Route:
+    """The route for the depths ``z`` (None: the surface only): ``resolve`` where every z is 0,
+    ``resolve_interior`` where every z > 0, both ("z = 0: ...; z > 0: ...") for a mix."""
+    surface = resolve(profile, method, rtol, n)
+    depth = np.asarray(0.0 if z is None else z, dtype=float)
+    if not np.any(depth > 0.0):
+        return surface
+    interior = resolve_interior(profile, method, rtol, n)
+    if np.all(depth > 0.0):
+        return interior
+    accuracy = (surface.accuracy if surface.accuracy == interior.accuracy
+                else f"z = 0: {surface.accuracy}; z > 0: {interior.accuracy}")
+    return Route(f"z = 0: {surface.route}; z > 0: {interior.route}", accuracy)
