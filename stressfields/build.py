@@ -37,13 +37,10 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
             continue
         value = recipe.values[par.name]
         if par.name in recipe.swept and par.choices:
-            # CF coordinate variables must be numeric: a sweep over choices is an int8 flag
-            # coordinate, with the names beside it as an auxiliary string coordinate
-            codes = np.arange(len(value), dtype=np.int8)
-            coords[par.name] = xr.Variable((par.name,), codes, {
-                "long_name": par.meaning, "flag_values": codes, "flag_meanings": " ".join(value)})
-            coords[f"{par.name}_name"] = xr.Variable((par.name,), np.asarray(value, dtype=object),
-                                                     {"long_name": f"{par.meaning} (name)"})
+            # labelled by name in memory (.sel(control="fixed_load"), legends); the writers store
+            # it as the CF flag coordinate (writers.encode_choices), sf.open_dataset reads it back
+            coords[par.name] = xr.Variable((par.name,), np.asarray(value, dtype=object),
+                                           {"long_name": par.meaning_in(physical)})
         elif par.name in recipe.swept:
             coords[par.name] = xr.Variable((par.name,), value, cf.coord_attrs(par, physical))
         elif par.kind == ARRAY:
@@ -64,7 +61,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
             attrs = cf.variable_attrs(var, physical)
             if route and not var.flag_values and var.dtype.startswith("float"):
                 attrs["stressfields_method"], attrs["stressfields_accuracy"] = route
-            data_vars[name] = xr.DataArray(arr, dims=dims, attrs=attrs)
+            (coords if var.coordinate else data_vars)[name] = xr.Variable(dims, arr, attrs)
 
     ds = xr.Dataset(data_vars, coords=coords, attrs=cf.global_attrs(recipe))
     for par in scen.parameters:

@@ -38,7 +38,7 @@ def global_attrs(recipe) -> dict[str, str]:
 
 
 def coord_attrs(par: Parameter, physical: bool) -> dict[str, str]:
-    attrs = {"long_name": par.meaning}
+    attrs = {"long_name": par.meaning_in(physical)}
     if not par.choices:
         attrs["units"] = par.units_in(physical)
     return attrs

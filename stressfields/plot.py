@@ -16,12 +16,16 @@ from __future__ import annotations
 import textwrap
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
+from .reading import open_dataset
 from .recipe import plot_along
 
 #: at most this many panels (3 columns)
 MAX_PANELS = 6
+#: characters of a panel title (the variable's long_name, shortened): one line at 7 pt on a 4.6 in panel
+TITLE_CHARS = 70
 
 
 def require_matplotlib():
@@ -42,7 +46,7 @@ def require_matplotlib():
 def quicklook(path: str | Path, recipe) -> Path:
     plt = require_matplotlib()
     path = Path(path)
-    with xr.open_dataset(path) as ds:
+    with open_dataset(path) as ds:          # choice dimensions labelled by name, for the legends
         fig = _figure(plt, ds, recipe)
         fig.suptitle(recipe.title, fontsize=9, wrap=True)
         fig.tight_layout()
@@ -57,7 +61,7 @@ def _figure(plt, ds: xr.Dataset, recipe):
     kind = spec.get("kind", "map" if {"x", "y"} <= set(swept) else "line")
     xname = spec.get("x", "x" if kind == "map" else (swept[-1] if swept else None))
     hue = spec.get("hue")
-    dims = {n: ds[n].dims for n in ds.data_vars}
+    dims = {n: v.dims for n, v in ds.variables.items()}      # coordinates too: plot.x may be one (ux0)
     along = plot_along(xname, hue, swept, dims) if kind == "line" and xname else None
     need = {"x", "y"} if kind == "map" else {along}
     names = [n for n in spec.get("variables", recipe.variables)
@@ -74,7 +78,8 @@ def _figure(plt, ds: xr.Dataset, recipe):
             _lines(ax, ds, name, xname, along, hue, spec.get("marker"))
             if "ylim" in spec:
                 ax.set_ylim(*spec["ylim"])
-        ax.set_title(textwrap.fill(ds[name].attrs.get("long_name", name), 60), fontsize=7)
+        ax.set_title(textwrap.shorten(ds[name].attrs.get("long_name", name), TITLE_CHARS, placeholder=" ..."),
+                     fontsize=7)
     for ax in list(axes.flat)[len(names):]:
         ax.set_visible(False)
     return fig
@@ -95,8 +100,7 @@ def _lines(ax, ds, name, xname, along, hue, marker):
     hold = {d: 0 for d in y.dims if d not in (along, hue)}
     y, x = y.isel(hold), x.isel(hold)
     if hue in y.dims:
-        texts = ds[f"{hue}_name"].values if f"{hue}_name" in ds else [f"{hue} = {v:g}" for v in ds[hue].values]
-        for i, text in enumerate(texts):
+        for i, text in enumerate(_legend(ds[hue])):
             ax.plot(x.isel({hue: i}).values, y.isel({hue: i}).values, lw=1, marker=marker, label=text)
         ax.legend(fontsize=7)
     else:
@@ -116,6 +120,16 @@ def _text_figure(plt, ds, recipe):
     return fig
 
 
+def _legend(coord) -> list[str]:
+    """One entry per value of a hue dimension: the name of a choice, else ``name = value``."""
+    values = np.asarray(coord.values)
+    if values.dtype.kind in "OUST":
+        return [str(v) for v in values]
+    return [f"{coord.name} = {v:g}" for v in values.tolist()]
+
+
 def _label(da) -> str:
+    """An axis label of one short line: the variable's name and its units (the long_name would wrap
+    onto 4-8 lines; it is the panel's title)."""
     units = da.attrs.get("units")
-    return f"{da.name} [{units}]" if units else str(da.name)
+    return f"{da.name} [{units}]" if units and units != "1" else str(da.name)

@@ -1,10 +1,11 @@
 """Reopen written data labelled: choice dimensions by their names, not their CF flag codes.
 
-On disk a sweep over choices (``control`` of graded_adhesive, ``domain`` of wavy) is an int8 flag
-coordinate (``flag_values``/``flag_meanings``) with the names beside it in ``<name>_name``, because
-CF coordinate variables must be numeric (`writers.encode_choices`). `open_dataset` turns it back
-into a string-labelled dimension, so ``open_dataset(p).sel(control="fixed_load")`` works and plots
-are labelled by name; the same is `xr.open_dataset(p, engine="stressfields")`.
+In memory (`sf.generate`) a sweep over choices (``control`` of graded_adhesive, ``domain`` of wavy)
+is a string-labelled dimension. On disk it is an int8 flag coordinate (``flag_values``/
+``flag_meanings``) with the names beside it in ``<name>_name``, because CF coordinate variables must
+be numeric (`writers.encode_choices`). `open_dataset` turns it back into the labelled form, so
+``open_dataset(p).sel(control="fixed_load")`` works and plots are labelled by name; the same is
+`xr.open_dataset(p, engine="stressfields")`.
 
 This module imports only the writer layer (xarray, NumPy): xarray loads every installed backend
 when it opens a file.

@@ -24,6 +24,7 @@ ARRAY parameters (their declared size limit), and the chunk count of output.chun
 """
 from __future__ import annotations
 
+import difflib
 import hashlib
 import json
 import math
@@ -222,8 +223,10 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
         if key in rejected:
             continue
         if key not in declared:
-            problems.append(f"unknown parameter {show(key)} for scenario '{name}'; allowed: "
+            problems.append(f"unknown parameter {show(key)} for scenario '{name}'{_hint(scen, key)}; allowed: "
                             f"{', '.join(declared)}")
+            if key in scen.renamed:         # said once: its new name is not "missing" as well
+                rejected.add(scen.renamed[key])
             continue
         value = _parse_value(declared[key], raw, problems)
         if value is None:
@@ -284,6 +287,16 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     canonical = json.dumps(canonical_dict, sort_keys=True, separators=(",", ":"))
     return Recipe(scen, values, swept, physical, variables, chunks, method, rtol, title,
                   text if text is not None else canonical, canonical, dict(plot), storage)
+
+
+def _hint(scen: Scenario, key) -> str:
+    """' (renamed: ...)' or ' (did you mean ...?)' for an unknown parameter, else ''."""
+    if not isinstance(key, str):
+        return ""
+    if key in scen.renamed:
+        return f" (renamed: it is now {scen.renamed[key]!r})"
+    close = difflib.get_close_matches(key, [p.name for p in scen.parameters], n=1, cutoff=0.8)
+    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def _table(data: dict, key: str, problems: list[str]) -> dict:
@@ -446,9 +459,11 @@ def _expand_sweep(key: str, raw, problems: list[str]):
 
 
 def _variables(scen: Scenario, requested, physical: bool, problems: list[str]) -> tuple[str, ...]:
-    available = [v.name for v in scen.variables_in(physical) if not v.always]
+    # every variable of the mode may be requested; the always-on ones (flags) also join by themselves,
+    # so the default list leaves them out (and recipes without output.variables keep their hash)
+    available = [v.name for v in scen.variables_in(physical)]
     if requested is None:
-        return tuple(scen.default_variables or available)
+        return tuple(scen.default_variables or [v.name for v in scen.variables_in(physical) if not v.always])
     if not isinstance(requested, list) or not requested or not all(isinstance(v, str) for v in requested):
         problems.append(f"output.variables = {show(requested)} must be a non-empty list of names; "
                         f"available: {', '.join(available)}")

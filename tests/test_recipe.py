@@ -151,3 +151,35 @@ def test_unsorted_sweeps_and_bad_tables_are_named():
                                                   "plot": {"kind": "line"}})
     assert "output.chunks x=1 makes 200,000 chunks" in problems(
         {**BASE, "parameters": {"x": {"start": -1.0, "stop": 1.0, "num": 200_000}}, "output": {"chunks": {"x": 1}}})
+
+
+def test_renamed_graded_parameters_say_their_new_names():
+    bad = problems({"scenario": "graded_normal", "parameters": {"R": 0.01, "E0": 1e9, "a": 1e-3,
+                                                                 "r": [0.0, 0.5]}}).split(" | ")
+    assert len(bad) == 2                   # the new name is not reported missing as well
+    assert "unknown parameter 'a'" in bad[0] and "now 'contact_radius'" in bad[0]
+    assert "unknown parameter 'r'" in bad[1] and "now 'rho'" in bad[1]
+    typo = problems({**BASE, "parameters": {"x": [0.5], "muu": 0.2}})
+    assert " | " not in typo and "did you mean 'mu'?" in typo
+
+
+#: the smallest valid parameters of each scenario
+MINIMAL = {
+    "conical": {"x": [0.5]}, "parabolic": {"x": [0.5]}, "axisymmetric": {"n": 3.0, "x": [0.5]},
+    "axisymmetric_history": {"ux0_history": [0.1], "x": [0.5]},
+    "wavy": {"amplitudes": [0.5], "wavenumbers": [1], "a": 0.3},
+    "graded_normal": {"R": 0.01, "E0": 1e9, "contact_radius": 1e-3},
+    "graded_adhesive": {"R": 0.01, "E0": 1e9, "contact_radius": 1e-3, "delta_gamma": 0.05},
+    "graded_tangential": {"R": 0.01, "E0": 1e9, "contact_radius": 1e-3},
+}
+
+
+def test_every_declared_variable_can_be_requested():
+    from stressfields.scenarios import REGISTRY
+
+    assert set(MINIMAL) == set(REGISTRY)
+    for name, scen in REGISTRY.items():
+        physical = scen.physical_switch is None
+        for var in scen.variables_in(physical):         # validity and converged included
+            got = load({"scenario": name, "parameters": MINIMAL[name], "output": {"variables": [var.name]}})
+            assert got.variables == (var.name,)

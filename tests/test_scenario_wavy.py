@@ -33,12 +33,11 @@ def both():
 def test_domain_and_harmonic_count_are_dimensions_side_by_side(both):
     assert both.pressure.dims == ("domain", "n_harmonics", "a", "x")
     assert both.mean_pressure.dims == ("domain", "n_harmonics", "a")
-    assert list(both.domain_name.values) == ["periodic", "nonperiodic"]
-    assert both.domain.attrs["flag_meanings"] == "periodic nonperiodic"
+    assert list(both.domain.values) == ["periodic", "nonperiodic"]     # labelled by name in memory
     assert list(both.n_harmonics.values) == [1, 2, 3]
     # the two problems differ (long-range interaction), most at large contact (+46 % at 0.8,
     # docs/theory/wavy.md (W26))
-    ratio = both.mean_pressure.sel(domain=0, a=0.8) / both.mean_pressure.sel(domain=1, a=0.8)
+    ratio = both.mean_pressure.sel(domain="periodic", a=0.8) / both.mean_pressure.sel(domain="nonperiodic", a=0.8)
     assert np.all((ratio > 1.4) & (ratio < 1.5))
 
 
@@ -46,8 +45,8 @@ def test_values_equal_direct_physics_calls(both):
     # broadcast as one dask chunk sees them, so the series tables are bit-identical
     N, a, x = both.n_harmonics.values[:, None, None], both.a.values[:, None], both.x.values
     table = (F3["amplitudes"], F3["wavenumbers"])
-    for code, domain in enumerate(both.domain_name.values):
-        ds = both.sel(domain=code)
+    for domain in both.domain.values:
+        ds = both.sel(domain=domain)
         kw = dict(periodic=domain == "periodic", n_harmonics=N, rtol=1e-12)
         case = (a[:, 0], *table)
         np.testing.assert_array_equal(ds.pressure, wv.pressure(x, a, *table, **kw)[0])
@@ -76,7 +75,7 @@ def test_reference_points(both):
     for case in load_reference("wavy_tsukanov")["cases"]:
         if case["two_a_over_lambda1"] not in both.a.values:
             continue
-        ds = both.sel(domain=0 if case["problem"] == "periodic" else 1, n_harmonics=profiles[case["profile"]],
+        ds = both.sel(domain=case["problem"], n_harmonics=profiles[case["profile"]],
                       a=case["two_a_over_lambda1"])
         assert float(ds.mean_pressure) == pytest.approx(case["p_inf_over_pstar"], abs=1e-11)
         assert float(ds.peak_pressure) == pytest.approx(case["p_max_over_pstar"], abs=1e-11)
@@ -116,17 +115,18 @@ def test_auto_uses_the_single_indenter_for_narrow_periodic_contacts(method):
               "x": {"start": -1.0, "stop": 1.0, "num": wv.api.SUBSTITUTE_MIN_POINTS + 1}}
     ds = sf.generate({"scenario": "wavy", "parameters": params, "method": {"method": method, "rtol": rtol},
                       "output": {"variables": ["pressure", "periodic_correction", "error_estimate"]}}).compute()
-    periodic = ds.sel(domain=0)
+    periodic = ds.sel(domain="periodic")
     h = np.pi * w[:, None] / 2
     exact = 2 * np.cos(h * ds.x.values) * np.sqrt(np.clip(np.sin(h) ** 2 - np.sin(h * ds.x.values) ** 2, 0, None))
     scale = wv.periodic_correction(w, [0.5], [1], rtol=rtol)[1]["scale"][:, None]
     assert np.all(np.abs(periodic.pressure.values - exact) <= rtol * scale)
     substituted = (periodic.validity == 3).all("x").values.tolist()
     assert substituted == ([True, True, False] if method == "auto" else [False, False, False])
-    assert not (ds.sel(domain=1).validity == 3).any()
+    assert not (ds.sel(domain="nonperiodic").validity == 3).any()
     # the correction is a property of the contact width, the same for both domains, ~0.41-0.44 (2a/lambda)^2
-    np.testing.assert_array_equal(ds.periodic_correction.sel(domain=0), ds.periodic_correction.sel(domain=1))
-    ratio = ds.periodic_correction.sel(domain=0).values / (w ** 2 * scale[:, 0])
+    np.testing.assert_array_equal(ds.periodic_correction.sel(domain="periodic"),
+                                  ds.periodic_correction.sel(domain="nonperiodic"))
+    ratio = ds.periodic_correction.sel(domain="periodic").values / (w ** 2 * scale[:, 0])
     assert np.all((0.41 < ratio) & (ratio < 0.44))
     assert ("periodic correction" in ds.pressure.attrs["stressfields_method"]) == (method == "auto")
 

@@ -71,7 +71,8 @@ def test_theory_pages_have_errata_with_tests(page):
 @pytest.mark.parametrize("scenario, params", [
     ("wavy", {"amplitudes": [1.0], "wavenumbers": [1], "a": 0.4, "x": [0.0]}),
     ("conical", {"x": [0.5], "y": 0.0}),
-    ("graded_normal", {"profile": "parabolic", "R": 1.0, "k": 0.5, "nu": 0.3, "E0": 1e9, "a": 0.1, "r": [0.5]}),
+    ("graded_normal", {"profile": "parabolic", "R": 1.0, "k": 0.5, "nu": 0.3, "E0": 1e9, "contact_radius": 0.1,
+                       "rho": [0.5]}),
 ])
 def test_written_attributes_stand_alone(scenario, params):
     ds = sf.generate({"scenario": scenario, "parameters": params})

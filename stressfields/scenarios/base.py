@@ -49,11 +49,14 @@ class Parameter:
     """One recipe parameter: a single value or, if ``sweepable``, a sweep that becomes a dimension.
 
     ``units`` is the UDUNITS string in the default (normalised) mode and ``units_physical`` the
-    one used when the recipe switches to physical units (``None``: the same in both modes).
+    one used when the recipe switches to physical units (``None``: the same in both modes);
+    ``meaning_physical`` likewise replaces ``meaning`` in physical mode, for a parameter whose
+    normalised meaning says what it is divided by (``None``: the same in both modes).
     """
 
     name: str
     meaning: str
+    meaning_physical: str | None = None
     units: str = "1"
     units_physical: str | None = None
     kind: str = FLOAT
@@ -79,6 +82,10 @@ class Parameter:
 
     def units_in(self, physical: bool) -> str:
         return self.units_physical if (physical and self.units_physical) else self.units
+
+    def meaning_in(self, physical: bool) -> str:
+        """The meaning in the mode, as said in the files' ``long_name``."""
+        return self.meaning_physical if (physical and self.meaning_physical) else self.meaning
 
     def condition(self) -> str:
         """The `when` condition in words: keys joined by 'and', values of one key by 'or'."""
@@ -162,6 +169,9 @@ class Variable:
     mode: str | None = None
     #: computed whenever any other variable is requested (e.g. the validity flag)
     always: bool = False
+    #: stored as a coordinate (not a dimension): a value the others are read and plotted against,
+    #: e.g. the displacement of each step of a history (``ds.plot(x="ux0")``)
+    coordinate: bool = False
 
     def units_in(self, physical: bool) -> str:
         return self.units_physical if (physical and self.units_physical) else self.units
@@ -201,6 +211,8 @@ class Scenario:
     complete: Callable[[dict], None] | None = None
     #: the page of docs/theory/ that gives the equations the scenario implements
     theory: str = ""
+    #: former parameter names -> current ones: a recipe using an old name is told the new one
+    renamed: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def full_references(self) -> str:

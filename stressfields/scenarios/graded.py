@@ -2,13 +2,14 @@
 
 Scenarios `graded_normal`, `graded_adhesive` (rigid axisymmetric indenter on one graded half-space)
 and `graded_tangential` (Cattaneo-Mindlin partial slip of two graded bodies). Physical units only
-(SI): lengths in m, E0 and pressures in Pa, forces in N; the radial coordinate `r` is given as r/a.
+(SI): lengths in m, E0 and pressures in Pa, forces in N; the contact radius a is `contact_radius` and
+the radial coordinate is `rho` = r/a.
 
 Method "auto" and "closed" use the closed forms of the paper (power-law profiles f = A r^n, with
 the paraboloid n = 2, A = 1/(2R) and the cone n = 1, A = tan(theta)); "quadrature" evaluates the
 MDR integral rules for the profile object (mandatory for a tabulated profile), with the recipe's
 rtol. Defaults: nu = 0.3, k = 0.5, c0 = 1 m (E0 is then the modulus at 1 m depth; only the
-combination E0/c0^k enters), r/a = 0.
+combination E0/c0^k enters), rho = r/a = 0.
 
 This module declares; the numerics are the entry points of ``physics.graded.fields`` (one per
 scenario), and the route table is ``physics.graded.resolve``.
@@ -51,8 +52,13 @@ C0 = Parameter("c0", "characteristic depth c0 at which E = E0", units="m", defau
                high=1e6)
 NU = Parameter("nu", "Poisson's ratio (constant with depth)", default=0.3, low=-1.0, low_open=True, high=0.5)
 K = Parameter("k", "grading exponent k of E(z) = E0 (z/c0)^k", default=0.5, low=0.0, high=1.0, high_open=True)
-A_RAD = Parameter("a", "contact radius a", units="m", low=0.0, low_open=True, high=1e6, required=True)
-R_REL = Parameter("r", "radial coordinate r divided by the contact radius a", default=0.0, low=0.0, high=1e6)
+# no two names differ only by case (CF 2.3; compliance-checker warns on r/R and a/A in one file): the
+# contact radius is named as in the axisymmetric scenarios, the radial coordinate rho = r/a
+A_RAD = Parameter("contact_radius", "contact radius a", units="m", low=0.0, low_open=True, high=1e6, required=True)
+R_REL = Parameter("rho", "radial coordinate rho = r/a: the radius r divided by the contact radius a", default=0.0,
+                  low=0.0, high=1e6)
+#: the former names of the two above, told to a recipe that still uses them
+RENAMED = {"a": "contact_radius", "r": "rho"}
 GEOMETRY = (PROFILE, R, TAN, N, A, PROFILE_R, PROFILE_F)
 MATERIAL = (E0, C0, NU, K)
 GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dimensions
@@ -67,6 +73,11 @@ def _f(p, key):
     depend on a swept parameter is evaluated without it)."""
     v = p.get(key)
     return None if v is None else np.asarray(v, dtype=float)
+
+
+def _where(p):
+    """The contact radius a and the radial coordinate rho = r/a, as the physics names them."""
+    return {"a": _f(p, "contact_radius"), "rho": _f(p, "rho")}
 
 
 def _indenter(p):
@@ -103,10 +114,10 @@ def _check_profile(values, method):
         step = table_step_problem("profile_r", r)
         if step:
             return [step]
-        a_max = float(np.max(values["a"]))
+        a_max = float(np.max(values["contact_radius"]))
         if a_max > r[-1]:
-            problems.append(f"a = {a_max!r} m exceeds the tabulated range: it must be in (0, {float(r[-1])!r}] "
-                            "(the last profile_r); extend the table")
+            problems.append(f"contact_radius = {a_max!r} m exceeds the tabulated range: it must be in "
+                            f"(0, {float(r[-1])!r}] (the last profile_r); extend the table")
         if method == "closed":
             problems.append("method.method = 'closed' has no closed form for profile = 'tabulated'; "
                             "use 'auto' or 'quadrature'")
@@ -131,30 +142,41 @@ def _grid(values, names):
     return out
 
 
-def _validity(field_dims, comment):
-    return Variable("validity", "validity of the field values", dims=field_dims, comment=comment, **VALIDITY)
+def _validity(field_dims, fields, comment):
+    """The validity flag of ``fields``: evaluated from them whether or not the file holds them, so that
+    it is the same requested alone, beside them, or beside other variables."""
+    return Variable("validity", f"validity of {' and '.join(fields)}", dims=field_dims, **VALIDITY,
+                    comment=f"{comment}. It flags {' and '.join(fields)}, evaluated whether or not the file holds them")
+
+
+def _flag(entry, known, flagged, out, p, options, **values):
+    """The validity flag of the ``flagged`` fields, evaluating those the block did not request."""
+    missing = [n for n in flagged if n not in out]
+    extra = _fields(entry, known, missing, p, options, **values) if missing else {}
+    return validity_flag(*({**out, **extra}[n] for n in flagged))
 
 
 # -- graded_normal -------------------------------------------------------------------------------
-N_DIMS = ("E0", "c0", "k", "nu", "a") + GEOM
+N_DIMS = ("E0", "c0", "k", "nu", "contact_radius") + GEOM
+N_FLAGGED = ("pressure", "uz")
 N_VARS = (
     Variable("kappa", "profile scaling factor g(a)/f(a) of the MDR transform (eq. 9: kappa(n, k) = "
-             "(n/2) B(n/2, (1+k)/2) for a power law f = A r^n)", dims=("k", "a") + GEOM),
-    Variable("depth", "indentation depth d(a)", units="m", dims=("k", "a") + GEOM),
+             "(n/2) B(n/2, (1+k)/2) for a power law f = A r^n)", dims=("k", "contact_radius") + GEOM),
+    Variable("depth", "indentation depth d(a)", units="m", dims=("k", "contact_radius") + GEOM),
     Variable("normal_force", "normal force F_N(a)", units="N", dims=N_DIMS),
-    Variable("pressure", "contact pressure p(r; a) (compressive positive)", units="Pa", dims=N_DIMS + ("r",)),
+    Variable("pressure", "contact pressure p(r; a) (compressive positive)", units="Pa", dims=N_DIMS + ("rho",)),
     Variable("uz", "normal surface displacement u_z(r; a), positive into the body", units="m",
-             dims=("k", "a") + GEOM + ("r",)),
-    _validity(N_DIMS + ("r",), "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the cone at k = 0), "
-              "where the exact pressure is unbounded"),
+             dims=("k", "contact_radius") + GEOM + ("rho",)),
+    _validity(N_DIMS + ("rho",), N_FLAGGED, "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
+              "cone at k = 0), where the exact pressure is unbounded"),
 )
 
 
 def _evaluate_normal(names, p, options):
-    out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, a=_f(p, "a"), rho=_f(p, "r"), k=_f(p, "k"),
-                  nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
+    values = dict(**_where(p), k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
+    out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, **values)
     if "validity" in names:
-        out["validity"] = validity_flag(*(out[n] for n in ("pressure", "uz") if n in out))
+        out["validity"] = _flag(gp.normal_fields, gp.fields.NORMAL, N_FLAGGED, out, p, options, **values)
     return out
 
 
@@ -176,27 +198,28 @@ GRADED_NORMAL = Scenario(
             "pressure and surface displacement (MDR)",
     references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (A_RAD, R_REL), variables=N_VARS,
     evaluate=_evaluate_normal, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
+    renamed=RENAMED,
     default_variables=("depth", "normal_force", "pressure", "uz"),
 )
 
 # -- graded_adhesive -----------------------------------------------------------------------------
-DGAM = Parameter("delta_gamma", "work of adhesion Delta gamma", units="J m-2", low=0.0, high=1e6, required=True)
+DGAM = Parameter("delta_gamma", "work of adhesion Delta gamma", units="J/m^2", low=0.0, high=1e6, required=True)
 CONTROL = Parameter("control", "loading condition at the critical (pull-off) point", kind=STR,
                     choices=("fixed_load", "fixed_grips"),
                     default=np.array(["fixed_load", "fixed_grips"], dtype=object))
-AD_DIMS = ("E0", "c0", "k", "nu", "delta_gamma", "a") + GEOM
+AD_DIMS = ("E0", "c0", "k", "nu", "delta_gamma", "contact_radius") + GEOM
 CRIT_DIMS = ("E0", "c0", "k", "nu", "delta_gamma") + GEOM + ("control",)
 AD_VARS = (
     Variable("depth", "indentation depth d(a) with adhesion (negative: below the undeformed surface)",
              units="m", dims=AD_DIMS),
     Variable("normal_force", "normal force F_N(a) with adhesion (negative: tensile)", units="N", dims=AD_DIMS),
     Variable("pressure", "contact pressure p(r; a) with adhesion (compressive positive; -inf at r = a)",
-             units="Pa", dims=AD_DIMS + ("r",)),
+             units="Pa", dims=AD_DIMS + ("rho",)),
     Variable("critical_radius", "critical contact radius a_c at pull-off", units="m", dims=CRIT_DIMS),
     Variable("critical_depth", "indentation depth d_c at pull-off", units="m", dims=CRIT_DIMS),
     Variable("critical_force", "normal force F_c at pull-off (negative: tensile)", units="N", dims=CRIT_DIMS),
-    _validity(AD_DIMS + ("r",), "1: pressure = -inf at r = a (the adhesive edge singularity, eq. 37) or +inf at r = 0 "
-              "for a profile with n + k <= 1, where the exact pressure is unbounded"),
+    _validity(AD_DIMS + ("rho",), ("pressure",), "1: pressure = -inf at r = a (the adhesive edge singularity, "
+              "eq. 37) or +inf at r = 0 for a profile with n + k <= 1, where the exact pressure is unbounded"),
     Variable("critical_validity", "validity of the critical (pull-off) values", dims=CRIT_DIMS, dtype="int8",
              flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
              comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
@@ -208,13 +231,13 @@ def _evaluate_adhesive(names, p, options):
     wanted = list(names)
     if "critical_validity" in names and "critical_radius" not in names:
         wanted.append("critical_radius")        # the flag is read off a_c
-    out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, a=_f(p, "a"), rho=_f(p, "r"),
-                  k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"), delta_gamma=_f(p, "delta_gamma"),
-                  mode=p.get("control"))
+    values = dict(**_where(p), k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"),
+                  delta_gamma=_f(p, "delta_gamma"), mode=p.get("control"))
+    out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, **values)
     if "critical_validity" in names:
         out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
     if "validity" in names:
-        out["validity"] = validity_flag(out["pressure"]) if "pressure" in out else np.int8(0)
+        out["validity"] = _flag(gp.adhesive_fields, gp.fields.ADHESIVE, ("pressure",), out, p, options, **values)
     return out
 
 
@@ -225,6 +248,7 @@ GRADED_ADHESIVE = Scenario(
     references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL),
     variables=AD_VARS,
     evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
+    renamed=RENAMED,
     default_variables=("depth", "normal_force", "pressure", "critical_radius", "critical_depth", "critical_force"),
 )
 
@@ -252,18 +276,18 @@ DELTA_X = Parameter("delta_x", "imposed tangential displacement delta_x (displac
                     "saturates at mu F_N once delta_x >= max_tangential_displacement)", units="m", default=0.0,
                     low=0.0, high=1e3)
 PAIR = ("E0", "k", "nu", "E0_2", "nu_2")
-T_FIELD = PAIR + ("c0", "mu", "a") + GEOM + ("fx", "r")
+T_FIELD = PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx", "rho")
 T_VARS = (
     Variable("stick_radius", "radius c of the stick zone divided by the contact radius a (eq. 51)",
-             dims=("k", "a") + GEOM + ("fx",)),
+             dims=("k", "contact_radius") + GEOM + ("fx",)),
     Variable("tangential_displacement", "relative tangential displacement delta_x of the bodies (eq. 49)",
-             units="m", dims=PAIR + ("mu", "a") + GEOM + ("fx",)),
+             units="m", dims=PAIR + ("mu", "contact_radius") + GEOM + ("fx",)),
     Variable("max_tangential_displacement", "tangential displacement delta_x,max at the onset of gross slip "
-             "(eq. 50)", units="m", dims=PAIR + ("mu", "a") + GEOM),
+             "(eq. 50)", units="m", dims=PAIR + ("mu", "contact_radius") + GEOM),
     Variable("force_ratio", "tangential force F_x divided by mu F_N under the imposed displacement delta_x "
-             "(eq. 51; 1 in gross slip)", dims=PAIR + ("mu", "a") + GEOM + ("delta_x",)),
+             "(eq. 51; 1 in gross slip)", dims=PAIR + ("mu", "contact_radius") + GEOM + ("delta_x",)),
     Variable("normal_force", "normal force F_N pressing the bodies together at contact radius a", units="N",
-             dims=PAIR + ("c0", "a") + GEOM),
+             dims=PAIR + ("c0", "contact_radius") + GEOM),
     Variable("shear_traction", "tangential traction tau_x(r) = mu [p(r; a) - p(r; c)] on the lower body "
              "(eq. 45)", units="Pa", dims=T_FIELD),
     # always: joins every variable that depends on the body pair
@@ -271,8 +295,9 @@ T_VARS = (
              flag_meanings=("decoupled_exact", "uncoupled_approximation"), always=True,
              comment="0: identical bodies, or nu = 1/(2+k) for every elastic body (sec. 5): the MDR solution is "
                      "exact; 1: the coupling is neglected (only with uncoupled_approximation = 'flag')"),
-    _validity(T_FIELD, "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile with n + k <= 1; "
-              "under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) and flagged 0"),
+    _validity(T_FIELD, ("shear_traction",), "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
+              "with n + k <= 1; under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) "
+              "and flagged 0"),
 )
 
 
@@ -290,14 +315,15 @@ def _pair(p):
 
 def _evaluate_tangential(names, p, options):
     k, nu, e0, e2, nu2 = _pair(p)
-    out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, a=_f(p, "a"), rho=_f(p, "r"),
-                  fx=_f(p, "fx"), delta_x=_f(p, "delta_x"), mu=_f(p, "mu"), c0=_f(p, "c0"), k=k, nu=nu, E0=e0,
-                  E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
+    values = dict(**_where(p), fx=_f(p, "fx"), delta_x=_f(p, "delta_x"), mu=_f(p, "mu"), c0=_f(p, "c0"), k=k,
+                  nu=nu, E0=e0, E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
+    out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, **values)
     if "coupling" in names:
         ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
         out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
     if "validity" in names:
-        out["validity"] = validity_flag(out["shear_traction"]) if "shear_traction" in out else np.int8(0)
+        out["validity"] = _flag(gp.tangential_fields, gp.fields.TANGENTIAL, ("shear_traction",), out, p, options,
+                                **values)
     return out
 
 
@@ -331,7 +357,7 @@ GRADED_TANGENTIAL = Scenario(
     references=REFERENCE, theory="graded",
     parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL),
     variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
-    conventions=CONVENTIONS, route=route,
+    conventions=CONVENTIONS, route=route, renamed=RENAMED,
     default_variables=("stick_radius", "tangential_displacement", "max_tangential_displacement", "normal_force",
                        "shear_traction"),
 )

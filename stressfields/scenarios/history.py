@@ -79,8 +79,9 @@ def _history_variables() -> tuple[Variable, ...]:
                          "is the energy dissipated between the two, for the outermost cycle closing during the "
                          "move (cycles closing within one move are nested). For a cycle closing at the end of "
                          "step j on the state of step i it is dissipated_energy[j] - dissipated_energy[i]"),
+        # a coordinate, in every file: the loops are read and plotted against it
         Variable("ux0", "tangential rigid-body displacement u_x0 at this step divided by the indentation depth "
-                 "delta (amplitude times ux0_history)", dims=("amplitude", "step")),
+                 "delta (amplitude times ux0_history)", dims=("amplitude", "step"), always=True, coordinate=True),
     )
 
 

@@ -43,12 +43,13 @@ HALF_WIDTH = "the contact half-width a"
 #: what a per-contact (x-independent) quantity depends on; only the swept ones become dimensions
 CASE = ("domain", "amplitudes", "wavenumbers", "n_harmonics", "E", "nu", "lambda_1", "a")
 
+_AMPLITUDES = ("amplitudes Delta_i of the harmonics, gap g = sum Delta_i (1 - cos(2 pi n_i x/lambda_1)); row 1 "
+               "is the base wave, Delta_1 > 0")
 PARAMETERS = (
     Parameter("domain", "periodic wavy surface (period lambda_1) or a single non-periodic wavy indenter",
               kind=STR, default="periodic", choices=DOMAINS),
-    Parameter("amplitudes", "amplitudes Delta_i of the harmonics, gap g = sum Delta_i (1 - cos(2 pi n_i x/"
-              "lambda_1)); row 1 is the base wave, Delta_1 > 0 (normalised mode: any length unit, only "
-              "Delta_i/Delta_1 matters)", units="1", units_physical="m", kind=ARRAY, required=True,
+    Parameter("amplitudes", f"{_AMPLITUDES} (normalised mode: any length unit, only Delta_i/Delta_1 matters)",
+              meaning_physical=_AMPLITUDES, units="1", units_physical="m", kind=ARRAY, required=True,
               sweepable=False),
     Parameter("wavenumbers", "integer wavenumbers n_i >= 1 of the harmonics (wavelength lambda_1/n_i), "
               "paired with amplitudes; the first is 1", kind=ARRAY, required=True, sweepable=False),
@@ -61,8 +62,9 @@ PARAMETERS = (
               high=1e6, sweepable=False, mode="physical"),
     Parameter("a", "contact width 2a divided by the base wavelength lambda_1", required=True,
               low=0.0, high=1.0, low_open=True, high_open=True),
-    Parameter("x", "surface coordinate x divided by the contact half-width a (physical mode: x in metres "
-              "from the contact centre)", units="1", units_physical="m", default=0.0, low=-1e6, high=1e6),
+    Parameter("x", "surface coordinate x divided by the contact half-width a",
+              meaning_physical="surface coordinate x from the contact centre", units="1", units_physical="m",
+              default=0.0, low=-1e6, high=1e6),
 )
 
 _SERIES = ("the closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or the truncated Bessel "

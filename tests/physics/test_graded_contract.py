@@ -135,7 +135,8 @@ def test_reproducer_scenario_edge_with_small_radius():
     """The edge point r/a = 1 - 1e-12 with a = 0.00248 (before: 3.2e-5 relative error)."""
     rho = 0.999999999999
     ds = sf.generate({"scenario": "graded_normal", "parameters": {
-        "profile": "parabolic", "R": 1.0, "E0": 1e9, "nu": 0.3, "k": 0.0, "a": 0.00248, "r": [0.0, rho]}})
+        "profile": "parabolic", "R": 1.0, "E0": 1e9, "nu": 0.3, "k": 0.0, "contact_radius": 0.00248,
+        "rho": [0.0, rho]}})
     p = ds.pressure.values.ravel()
     assert rel(p[1], p[0] * math.sqrt((1 - rho) * (1 + rho))) <= CF
     assert (ds.validity.values == 0).all()
@@ -144,8 +145,8 @@ def test_reproducer_scenario_edge_with_small_radius():
 def test_reproducer_scenario_adhesive_without_adhesion_at_the_edge():
     for method in ("auto", "quadrature"):
         ds = sf.generate({"scenario": "graded_adhesive", "method": {"method": method}, "parameters": {
-            "profile": "parabolic", "R": 1.0, "E0": 1e9, "nu": 0.3, "k": 0.5, "a": 0.01, "delta_gamma": 0.0,
-            "r": [0.5, 1.0]}})
+            "profile": "parabolic", "R": 1.0, "E0": 1e9, "nu": 0.3, "k": 0.5, "contact_radius": 0.01,
+            "delta_gamma": 0.0, "rho": [0.5, 1.0]}})
         assert ds.pressure.values.ravel()[1] == 0.0 and (ds.validity.values == 0).all()
 
 
@@ -204,8 +205,8 @@ def test_reproducer_centre_flags_under_partial_and_gross_slip():
     +inf with flag 1 in gross slip (fx = 1), on both routes."""
     for method in ("auto", "quadrature"):
         ds = sf.generate({"scenario": "graded_tangential", "method": {"method": method}, "parameters": {
-            "profile": "conical", "tan_theta": 0.1, "E0": 1e9, "nu": 0.3, "k": 0.0, "a": 0.002, "mu": 0.3,
-            "fx": [1e-12, 0.5, 1.0], "r": [0.0, 0.5]}, "output": {"variables": ["shear_traction"]}})
+            "profile": "conical", "tan_theta": 0.1, "E0": 1e9, "nu": 0.3, "k": 0.0, "contact_radius": 0.002,
+            "mu": 0.3, "fx": [1e-12, 0.5, 1.0], "rho": [0.0, 0.5]}, "output": {"variables": ["shear_traction"]}})
         tau, flag = ds.shear_traction.values.reshape(3, 2), ds.validity.values.reshape(3, 2)
         assert np.isfinite(tau[:2]).all() and (flag[:2] == 0).all()
         assert np.isposinf(tau[2, 0]) and flag[2, 0] == 1 and flag[2, 1] == 0
