@@ -12,6 +12,30 @@ from .scenarios.base import Parameter, Variable
 
 CONVENTIONS = "CF-1.8"
 
+#: the accuracy every float variable promises: written once, here; the README and data_schema.md
+#: quote it (tests/test_cf_and_docs.py keeps them in sync) and every file carries it
+ACCURACY_CONTRACT = """\
+- **Closed forms**: relative error at most 1e-12 of |value| wherever the value is finite, far
+  field and next to contact and stick edges included.
+- **Quadrature and series** (the recipe's `[method] rtol`): |error| ≤ rtol · max(|value|, S),
+  where S is the variable's normalisation scale (its `normalisation` attribute): the mean contact
+  pressure p_m for axisymmetric stresses, p_m/a for `dpdz`, p* for wavy pressures, Δ1 for wavy
+  displacements; for the graded family rtol is relative to |value|.
+- **`error_estimate`** (where a scenario offers it) is an upper bound of |error|, and
+  **`converged`** is 1 exactly when `error_estimate` ≤ rtol · S.
+- **`validity`** is 0 where every value of the point meets the above. Any other code names the
+  true cause, as its `flag_meanings` say: ±inf only where the exact limit is infinite, NaN only
+  where the exact limit depends on the direction of approach, and family-specific causes such as a
+  series that did not converge or an approximate formula. A finite value with validity 0 is never
+  knowingly wrong.
+- **Known limits**, stated rather than hidden: a value within a few units of rounding of an edge
+  moves with that rounding (the field's own sensitivity, about eps·a/|r − a|: the graded shear
+  traction within 1e-15 of the stick edge c/a, interior fields next to the edge ring); in-plane
+  components of the tangential field below the surface that pass through zero meet 1e-12 of the
+  largest component rather than of their own value; wavy `error_estimate` bounds the pressures,
+  not `uz`.
+"""
+
 
 def global_attrs(recipe) -> dict[str, str]:
     scen = recipe.scenario
@@ -28,6 +52,7 @@ def global_attrs(recipe) -> dict[str, str]:
         "references": scen.full_references,
         "comment": f"{scen.summary}. Values in {mode}. Signs: {scen.conventions}. See data_schema.md "
                    "of stressfields for every variable.",
+        "stressfields_accuracy_contract": ACCURACY_CONTRACT,
         "stressfields_version": __version__,
         "stressfields_scenario": scen.name,
         "stressfields_units_mode": "physical" if recipe.physical else "normalised",

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .cf import ACCURACY_CONTRACT
 from .scenarios import REGISTRY
 from .scenarios.base import Parameter, Scenario, Variable
 
@@ -21,14 +22,21 @@ a parameter given as a single value becomes a scalar coordinate; a parameter of 
 `Conventions`, `title`, `institution`, `source`, `history`, `references`, `comment`,
 `stressfields_version`, `stressfields_scenario`, `stressfields_units_mode` (normalised | physical),
 `stressfields_recipe` (the recipe text), `stressfields_recipe_canonical` and
-`stressfields_recipe_sha256` (SHA-256 of the canonical JSON of the normalised recipe).
+`stressfields_recipe_sha256` (SHA-256 of the canonical JSON of the normalised recipe),
+`stressfields_accuracy_contract` (below).
 
 Sign conventions are stated per scenario below and in each file's `comment` attribute.
+
+## Accuracy contract
+
+Every float variable promises the following (each file also carries it as the global attribute
+`stressfields_accuracy_contract`):
+
 """
 
 
 def document() -> str:
-    parts = [HEADER]
+    parts = [HEADER + ACCURACY_CONTRACT]
     for scen in REGISTRY.values():
         parts.append(scenario_text(scen, level=2))
     return "\n".join(parts)

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 import xarray as xr
 
+import stressfields as sf
 from stressfields import cli
 from stressfields.schema import document
 
@@ -71,3 +72,16 @@ def test_readme_quick_start_is_two_commands_and_ci_runs_the_second():
 def test_module_entry_point():
     done = subprocess.run([sys.executable, "-m", "stressfields", "list"], capture_output=True, text=True)
     assert done.returncode == 0 and "conical" in done.stdout
+
+
+def test_accuracy_contract_is_written_once_and_quoted():
+    """The contract lives in cf.ACCURACY_CONTRACT; the README and the schema quote it verbatim and
+    every file carries it."""
+    from stressfields.cf import ACCURACY_CONTRACT
+    from stressfields.schema import document
+
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert ACCURACY_CONTRACT in readme
+    assert ACCURACY_CONTRACT in document()
+    ds = sf.generate({"scenario": "conical", "parameters": {"x": [0.5]}})
+    assert ds.attrs["stressfields_accuracy_contract"] == ACCURACY_CONTRACT
