@@ -14,14 +14,8 @@ from stressfields import cli, writers
 from stressfields.hashing import file_hash
 from stressfields.netcdf import _layout
 from stressfields.scenarios import REGISTRY
-from stressfields.scenarios.axisymmetric import PROFILE_F, PROFILE_R, X, Y, Z
 
 from test_cf_and_docs import cf_failures
-
-#: the axisymmetric declarations shared by conical/parabolic/axisymmetric/axisymmetric_history whose
-#: long_name says "divided by a" (or "normalised mode") also in physical mode, until they declare
-#: meaning_physical (scenarios/axisymmetric.py)
-AXISYMMETRIC_PARAMETERS = (X, Y, Z, PROFILE_R, PROFILE_F)
 
 pytest.importorskip("zarr")
 
@@ -207,8 +201,6 @@ def test_recipe_output_table_sets_the_storage(tmp_path):
 
 ROOT = Path(__file__).resolve().parents[1]
 RECIPES = sorted((ROOT / "recipes").glob("*.toml"))
-#: pint's parser reads UDUNITS' "Pa m-1" as a subtraction; axisymmetric.py declares dpdz so until edited
-DPDZ_UNITS_PENDING = REGISTRY["conical"].variable("dpdz").units_physical == "Pa m-1"
 
 
 @pytest.fixture(scope="module")
@@ -244,10 +236,7 @@ def test_a_swept_choice_equals_each_choice_given_alone_and_hashes_as_its_cf_form
     assert file_hash(labelled) == file_hash(flagged)
 
 
-@pytest.mark.parametrize("recipe", [
-    pytest.param(p, marks=pytest.mark.xfail(p.stem == "steel_cone_physical" and DPDZ_UNITS_PENDING,
-                                            reason="scenarios/axisymmetric.py: dpdz in 'Pa m-1'"))
-    for p in RECIPES], ids=lambda p: p.stem)
+@pytest.mark.parametrize("recipe", RECIPES, ids=lambda p: p.stem)
 def test_every_units_string_reads_in_pint_cf_xarray_and_cf_units(recipe_outputs, recipe):
     pint = pytest.importorskip("pint")
     pytest.importorskip("pint_xarray")
@@ -334,12 +323,7 @@ def _physical_meanings(scen):
 
 @pytest.mark.parametrize("name", list(REGISTRY))
 def test_physical_long_names_do_not_say_divided_by(name):
-    scen = REGISTRY[name]
-    pending = {p.name for p in AXISYMMETRIC_PARAMETERS if p.meaning_physical is None}
-    bad = _physical_meanings(scen)
-    if set(bad) <= pending and bad:
-        pytest.xfail(f"scenarios/axisymmetric.py declares no meaning_physical for {bad}")
-    assert bad == []
+    assert _physical_meanings(REGISTRY[name]) == []
 
 
 def test_a_physical_wavy_file_says_metres_from_the_centre():

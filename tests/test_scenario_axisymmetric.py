@@ -57,3 +57,14 @@ def test_power_law_two_is_hertz_mindlin():
     # Hertz inside the contact, normal part: sigma_zz = -p, p = (3/2) p_m sqrt(1 - r^2)
     r = np.hypot(0.1, 0.4)
     assert float(closed.sigma_zz.sel(x=0.1, y=0.4)) == pytest.approx(-1.5 * np.sqrt(1 - r ** 2), rel=1e-13)
+
+
+def test_a_table_with_a_vanishing_step_is_refused_before_it_is_built():
+    """A 1e-300 step stalled the table construction: the check refuses it first, naming the key."""
+    import stressfields as sf
+    from stressfields.recipe import RecipeError
+
+    r = [0.0, 1e-300, 2e-300, 3e-300, 0.5, 1.0, 1.2]
+    with pytest.raises(RecipeError, match="profile_r has a step of 1e-300"):
+        sf.generate({"scenario": "axisymmetric", "parameters": {
+            "profile": "tabulated", "profile_r": r, "profile_f": [x * x for x in r], "x": [0.5]}})

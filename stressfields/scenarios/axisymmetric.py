@@ -1,6 +1,6 @@
 """Axisymmetric rigid indenters on a homogeneous elastic half-space: stress tensor and
-hydrostatic-pressure gradient on the surface under normal and Cattaneo–Mindlin tangential load,
-and below it (depth z > 0) under normal load.
+hydrostatic-pressure gradient under normal and Cattaneo–Mindlin tangential load, on the surface and
+below it (depth z > 0).
 
 Scenarios `conical`, `parabolic` and `axisymmetric` (power law, tabulated profile, flat punch).
 Normalised mode (default): x, y, z in units of the contact radius a, stresses divided by the mean
@@ -20,8 +20,8 @@ from typing import Any, Mapping
 import numpy as np
 
 from ..physics import axisymmetric as ax
-from ..physics.axisymmetric import PRINCIPAL, STRESS, TANGENTIAL_BELOW
-from .base import ARRAY, STR, Parameter, Scenario, Variable
+from ..physics.axisymmetric import PRINCIPAL, STRESS
+from .base import ARRAY, STR, Parameter, Scenario, Variable, table_step_problem
 
 REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient of hydrostatic pressure "
              "in the contact plane of axisymmetric bodies under normal and tangential loading, "
@@ -41,12 +41,13 @@ E = Parameter("E", "Young's modulus of the half-space (giving it switches to phy
 DELTA = Parameter("delta", "indentation depth", units="m", low=0.0, low_open=True, high=1e3,
                   mode="physical")
 X = Parameter("x", "surface coordinate x (direction of the tangential load) divided by the contact "
-              "radius a", units="1", units_physical="m", required=True, low=-1e6, high=1e6)
+              "radius a", units="1", units_physical="m", required=True, low=-1e6, high=1e6,
+              meaning_physical="surface coordinate x (direction of the tangential load)")
 Y = Parameter("y", "surface coordinate y divided by the contact radius a", units="1",
-              units_physical="m", default=0.0, low=-1e6, high=1e6)
-Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface; z > 0 under "
-              "normal load only: mu = 0 or ux0 = 0)", units="1", units_physical="m", default=0.0, low=0.0,
-              high=1e6)
+              units_physical="m", default=0.0, low=-1e6, high=1e6, meaning_physical="surface coordinate y")
+Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface)", units="1",
+              units_physical="m", default=0.0, low=0.0,
+              high=1e6, meaning_physical="depth below the surface (0: the surface)")
 THETA = Parameter("theta", "inclination angle of the cone flank to the undeformed surface", units="rad",
                   low=0.0, low_open=True, high=math.pi / 2, high_open=True, sweepable=False,
                   mode="physical")
@@ -63,12 +64,16 @@ RADIUS = Parameter("radius", "radius of the flat punch", units="m", low=0.0, low
                    sweepable=False, mode="physical", when={"profile": ("flat_punch",)})
 PROFILE_R = Parameter("profile_r", "radii of the tabulated profile f(r), from 0 (normalised mode: "
                       "divided by the contact radius a, covering [0, 1])", units="1", units_physical="m",
-                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
+                      meaning_physical="radii of the tabulated profile f(r), from 0")
 PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-decreasing (normalised "
                       "mode: any length unit, the scale cancels), interpolated by a not-a-knot cubic spline; "
                       "data whose contact pressure would be tensile anywhere in the contact (p < -1e-9 p_m) "
                       "are refused by the recipe check", units="1", units_physical="m",
-                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)})
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
+                      meaning_physical="heights f(r) of the tabulated profile, non-decreasing, interpolated by a "
+                                       "not-a-knot cubic spline; data whose contact pressure would be tensile "
+                                       "anywhere in the contact (p < -1e-9 p_m) are refused by the recipe check")
 
 
 def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[str, ...] = SPATIAL
@@ -94,7 +99,7 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                  dims=everything),
         Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z "
                  + ("(at z = 0: the limit z -> 0+)" if deep else "at z = 0+"),
-                 units_physical="Pa m-1", scale="p_m/a, with p_m = F_N/(pi a^2) and a the contact radius",
+                 units_physical="Pa/m", scale="p_m/a, with p_m = F_N/(pi a^2) and a the contact radius",
                  dims=everything),
         Variable("stick_radius", "radius c of the stick zone (Cattaneo-Mindlin; 0 in gross slip; a under "
                  "normal load only)", units_physical="m", scale="the contact radius a", dims=case),
@@ -108,12 +113,15 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                  comment=("Of the surface point (x, y) above the field point: independent of the depth z."
                           if deep else None)),
         Variable("validity", f"validity of the field values at the {'point' if deep else 'surface point'}",
-                 dtype="int8", dims=everything, flag_values=(0, 1, 2),
-                 flag_meanings=("finite", "unbounded_at_singular_point", "undefined_direction_dependent_limit"),
+                 dtype="int8", dims=everything, flag_values=(0, 1, 2, 3),
+                 flag_meanings=("finite", "unbounded_at_singular_point", "undefined_direction_dependent_limit",
+                                "not_resolved_below_the_surface"),
                  comment=f"1: a value is +-inf where the exact field is unbounded ({singular}"
                          + ("; all at z = 0" if deep else "") + "); 2: a value is NaN where "
                          "the exact limit depends on the direction of approach (r = 0 under gross slip of a "
-                         "cone). " + ("Below the surface (z > 0) every value is finite (0). " if deep else "")
+                         "cone). " + ("Below the surface (z > 0) every exact value is finite; 3: a value there is NaN "
+                                      "because the point lies closer than ~1e-100 a to the axis or the surface, "
+                                      "which the 1-D routes do not resolve. " if deep else "")
                          + "Only the variables in this file are considered.",
                  always=True),
     )
@@ -206,6 +214,9 @@ def check_profile(values, physical, method):
         r, f = np.asarray(values["profile_r"]), np.asarray(values["profile_f"])
         if r.shape != f.shape:
             return [f"profile_r has {r.size} values but profile_f has {f.size}; they must pair up"]
+        step = table_step_problem("profile_r", r)    # before building: a 1e-300 step stalls the table
+        if step:
+            return [step]
         try:
             profile = ax.tabulated(r, f)
         except ValueError as exc:
@@ -235,15 +246,13 @@ def check_profile(values, physical, method):
 
 def check_depth(kind: str | None = None):
     """The check of a scenario with the depth z (``kind`` its profile kind; None: the recipe's
-    `profile`, with ``check_profile``): fields below the surface exist under normal load only, and
-    ``closed`` only where the interior has closed forms."""
+    `profile`, with ``check_profile``): ``closed`` below the surface only where the interior has closed
+    forms."""
 
     def check(values, physical, method):
         problems = check_profile(values, physical, method) if kind is None else []
         if not np.any(np.asarray(values.get("z", 0.0), dtype=float) > 0.0):
             return problems
-        if np.any(np.asarray(values.get("mu", 0.0)) > 0.0) and np.any(np.asarray(values.get("ux0", 0.0)) > 0.0):
-            problems.append(TANGENTIAL_BELOW)
         which = kind or values.get("profile", PROFILE.default)
         if (method == "closed" and ax.has_closed_form(which, values.get("n"))
                 and not ax.has_interior_closed_form(which, values.get("n"))):
@@ -279,14 +288,18 @@ def route_of(kind: str | None = None, default: str = PROFILE.default):
 
     def route(values, method, rtol):
         which = kind or values.get("profile", default)
-        z = values.get("z")
-        if z is not None and np.any(np.asarray(z, dtype=float) > 0.0) and rtol < ax.INTERIOR_RTOL \
-                and ax.resolve_interior(which, method, rtol, values.get("n")).kernel == "quadrature":
+        z, n = values.get("z"), values.get("n")
+        tangential = bool(np.any(np.asarray(values.get("mu", 0.0)) > 0.0)
+                          and np.any(np.asarray(values.get("ux0", 0.0)) > 0.0))
+        floor = ax.tangential_floor(which, n) if tangential else ax.INTERIOR_RTOL
+        if z is not None and np.any(np.asarray(z, dtype=float) > 0.0) and rtol < floor \
+                and ax.resolve_interior(which, method, floor, n).kernel == "quadrature":
             from ..recipe import RecipeError     # the check does not see rtol; recipe imports this module
-            raise RecipeError([f"method.rtol = {rtol:g} is below {ax.INTERIOR_RTOL:g}, the smallest the "
-                               f"superposition below the surface (z > 0) reaches for {which!r}; use "
-                               f"rtol >= {ax.INTERIOR_RTOL:g}, or z = 0"])
-        return ax.resolve_depth(which, method, rtol, values.get("n"), z)
+            load = " under tangential load" if floor > ax.INTERIOR_RTOL else ""
+            raise RecipeError([f"method.rtol = {rtol:g} is below {floor:g}, the smallest the superposition "
+                               f"below the surface (z > 0) reaches{load} for {which!r}; use rtol >= {floor:g}, "
+                               "or z = 0"])
+        return ax.resolve_depth(which, method, rtol, n, z, tangential=tangential)
 
     return route
 
@@ -304,11 +317,11 @@ def _scenario(name, summary, geometry, kind):
 
 
 CONICAL = _scenario("conical", "Rigid cone on an elastic half-space: surface stresses and dp/dz under normal "
-                    "and Cattaneo-Mindlin tangential load, and below the surface under normal load", (THETA,), "cone")
+                    "and Cattaneo-Mindlin tangential load, and below the surface", (THETA,), "cone")
 PARABOLIC = _scenario("parabolic", "Rigid paraboloid (Hertz-Mindlin) on an elastic half-space: surface stresses "
-                      "and dp/dz under normal and Cattaneo-Mindlin tangential load, and below the surface under "
-                      "normal load", (R,), "paraboloid")
+                      "and dp/dz under normal and Cattaneo-Mindlin tangential load, and below the surface",
+                      (R,), "paraboloid")
 AXISYMMETRIC = _scenario("axisymmetric", "Rigid axisymmetric indenter of any profile (power law, tabulated, flat "
                          "punch) on an elastic half-space: surface stresses and dp/dz (MDR, 1-D integrals), and "
-                         "below the surface under normal load (1-D superposition of flat punches)",
+                         "below the surface (1-D superposition of flat and sliding punches)",
                          (PROFILE, N, A, RADIUS, PROFILE_R, PROFILE_F), None)

@@ -284,13 +284,11 @@ def test_property_closed_vs_quadrature(kind, amp, nu, mu, ux0, rtol, radii, phis
     np.testing.assert_array_equal(closed["validity"], quadr["validity"])
 
 
-@pytest.mark.xfail(strict=True, reason="cone closed form, gross slip, r < 1.5e-154 a: sqrt_diff(r, c)/r "
-                   "underflows (r*r = 0) and the tangential in-plane part is dropped")
 def test_cone_gross_slip_closed_near_axis_reproducer():
     """At r = 1e-200 a on y = 0 (nu = 0, mu = 1, gross slip c = 0) the exact sigma_xx / p_m is the
     normal part (A20), p0 [B/2 - L/2] with B = 1/2 + O(r^2), L = ln(2a/r) + O(r^2), plus the
-    tangential part (A50) with C = 1, A = 0, X = 1: -2 mu p0.  The closed route gives the normal
-    part alone (2 p_m off); the quadrature route is right."""
+    tangential part (A50) with C = 1, A = 0, X = 1: -2 mu p0.  Both routes; the closed one once
+    formed C = sqrt_diff(r, c)/r, whose r*r underflowed, and gave the normal part alone (2 p_m off)."""
     r = 1e-200
     expect = 0.25 - 0.5 * math.log(2.0 / r) - 2.0
     for method in ("quadrature", "closed"):
@@ -298,12 +296,10 @@ def test_cone_gross_slip_closed_near_axis_reproducer():
         assert float(got["sigma_xx"][0]) == pytest.approx(expect, rel=1e-12), method
 
 
-@pytest.mark.xfail(strict=True, reason="quadrature route, normal load, 1.5e-162 a < r < 1.5e-154 a (r^2 "
-                   "subnormal): the in-plane stresses lose up to 1e-4 p_m")
 def test_quadrature_normal_subnormal_radius_reproducer():
     """sigma_xy of the cone under normal load at r = 1e-160 a, direction (0.6, 0.8): exactly
     (sigma_rr - sigma_phiphi) X Y = p0 (1 - 2 nu) B X Y (A20), (A22), B = 1/2 + O(r^2): 0.24 p_m at
-    nu = 0.  The closed route meets it; the quadrature route (rtol 1e-10) is 1.1e-4 p_m off."""
+    nu = 0.  Both routes; the quadrature one once divided F(r) by a subnormal r^2 (1.1e-4 p_m off)."""
     r = 1e-160
     for method in ("closed", "quadrature"):
         got, _ = _normalised(ax.cone(1.0), np.array([0.6 * r]), np.array([0.8 * r]), 0.0, 0.0, 0.0, method=method)

@@ -1,6 +1,6 @@
 """Axisymmetric rigid indenters on an elastic half-space: surface (z = 0) stress tensor and
 normal gradient of the hydrostatic pressure under normal and Cattaneo–Mindlin tangential load, and
-both below the surface (z > 0) under normal load.
+both below the surface (z > 0).
 
 E. Willert, F. Forsbach, V. L. Popov, "Stress tensor and gradient of hydrostatic pressure in the
 contact plane of axisymmetric bodies under normal and tangential loading", Forschung im
@@ -12,23 +12,25 @@ NumPy/SciPy; results divided by E*.
 scenario in one call; ``routes`` is the one table of which profiles have closed forms and
 what the methods (``auto``, ``closed``, ``quadrature``) mean.
 """
-from .fields import (FIELDS, HISTORY_FIELDS, HISTORY_LOADS, INVARIANTS, PRINCIPAL, STRESS, TANGENTIAL_BELOW,
+from .fields import (FIELDS, HISTORY_FIELDS, HISTORY_LOADS, INVARIANTS, PRINCIPAL, STRESS,
                      contact_radius, fields, history_fields, validity_flag)
 from .interior import interior_dpdz, interior_stress
+from .interior_tangential import interior_dpdz_tangential, interior_stress_tangential
 from .profiles import (FlatPunch, Cone, Paraboloid, PowerLaw, Profile, Tabulated, cone, flat_punch,
                        paraboloid, power_law, tabulated)
-from .routes import (INTERIOR_RTOL, METHODS, Route, has_closed_form, has_interior_closed_form, resolve,
-                     resolve_depth, resolve_interior)
+from .routes import (INTERIOR_RTOL, METHODS, TANGENTIAL_TIP_RTOL, Route, has_closed_form,
+                     has_interior_closed_form, resolve, resolve_depth, resolve_interior, tangential_floor)
 from .surface import COMPONENTS, mean_pressure, min_pressure, stick_radius, surface_dpdz, surface_stress
 
 __all__ = [
     "Profile", "Cone", "Paraboloid", "PowerLaw", "FlatPunch", "Tabulated",
     "cone", "paraboloid", "power_law", "flat_punch", "tabulated",
     "COMPONENTS", "surface_stress", "surface_dpdz", "stick_radius", "mean_pressure", "min_pressure",
-    "interior_stress", "interior_dpdz",
-    "STRESS", "PRINCIPAL", "INVARIANTS", "TANGENTIAL_BELOW", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS",
+    "interior_stress", "interior_dpdz", "interior_stress_tangential", "interior_dpdz_tangential",
+    "STRESS", "PRINCIPAL", "INVARIANTS", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS",
     "fields", "history_fields",
     "contact_radius", "validity_flag",
-    "METHODS", "INTERIOR_RTOL", "Route", "has_closed_form", "has_interior_closed_form", "resolve",
+    "METHODS", "INTERIOR_RTOL", "TANGENTIAL_TIP_RTOL", "tangential_floor",
+    "Route", "has_closed_form", "has_interior_closed_form", "resolve",
     "resolve_interior", "resolve_depth",
 ]

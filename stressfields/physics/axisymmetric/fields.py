@@ -6,8 +6,10 @@ history at constant normal load, docs/theory/axisymmetric.md (A65)-(A77)) take t
 ``routes.resolve`` and return ``({name: ndarray}, Route)``.  They own what lies between the kernels
 and a scenario: the stick radius (A32)-(A33), the sticking flat punch, the invariants (A60)-(A61)
 of the stress tensor, dp/dz, the contact-region flag and the validity flag.  Below the surface
-(``fields`` with z > 0, normal load) they call ``interior.interior_stress`` and
-``interior.interior_dpdz`` (docs/theory/interior.md); z = 0 takes the surface kernels.
+(``fields`` with z > 0) they call ``interior.interior_stress`` and ``interior.interior_dpdz`` and,
+under tangential load, add ``interior_tangential.interior_stress_tangential`` and
+``interior_dpdz_tangential`` with the same stick radius (docs/theory/interior.md); z = 0 takes the
+surface kernels.
 
 Units (as the kernels): lengths (x, y, a, the stick radius) in the profile's length unit; stresses,
 von Mises and principal stresses divided by E* and multiplied by ``scale``; dp/dz divided by
@@ -28,6 +30,7 @@ from ..flags import validity_flag
 from ..invariants import principal_stresses, singular_limits, von_mises
 from . import history as hist
 from .interior import interior_dpdz, interior_stress
+from .interior_tangential import interior_dpdz_tangential, interior_stress_tangential
 from .profiles import Profile
 from .routes import Route, resolve, resolve_depth, resolve_interior
 from .surface import stick_radius, surface_dpdz, surface_stress
@@ -35,6 +38,8 @@ from .surface import stick_radius, surface_dpdz, surface_stress
 __all__ = ["STRESS", "PRINCIPAL", "INVARIANTS", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS", "fields", "history_fields",
            "contact_radius", "validity_flag"]
 
+#: validity code of a point below the surface that the 1-D routes do not resolve
+UNRESOLVED = 3
 STRESS = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz")
 PRINCIPAL = ("sigma_1", "sigma_2", "sigma_3")
 #: the invariants of the stress tensor: von Mises (A60), principal stresses, tau_max = (sigma_1 - sigma_3)/2
@@ -49,9 +54,6 @@ HISTORY_LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle
 HISTORY_FIELDS = SPATIAL + HISTORY_LOADS
 #: the fields the validity flag looks at
 _VALUED = STRESS + INVARIANTS + ("dpdz",)
-#: the message of a field below the surface under tangential load (the recipe check says the same)
-TANGENTIAL_BELOW = ("fields below the surface under tangential load are not available yet; use ux0 = 0 or "
-                    "mu = 0, or z = 0")
 
 # region flag values (flag_meanings of the scenarios' `region`)
 OUTSIDE, STICK, SLIP, NO_TRACTION = 0, 1, 2, 3
@@ -60,9 +62,8 @@ OUTSIDE, STICK, SLIP, NO_TRACTION = 0, 1, 2, 3
 def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, ux0,
            method: str = "auto", rtol: float = 1e-10, scale=1.0,
            dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
-    """The requested fields on the surface (z = 0) under normal load and monotonic
-    Cattaneo–Mindlin tangential load, and below it (z > 0) under normal load, and the route taken
-    (``routes.resolve_depth``).
+    """The requested fields on the surface (z = 0) and below it (z > 0) under normal load and
+    monotonic Cattaneo–Mindlin tangential load, and the route taken (``routes.resolve_depth``).
 
     Parameters
     ----------
@@ -74,12 +75,14 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
         2 slip, 3 contact without tangential traction, mu = 0 or ux0 = 0; of the surface point
         (x, y), whatever z) and "validity" (int8: 0 every requested value finite, 1 some value
         +-inf, 2 some value NaN; 0 when no valued field is requested).  Below the surface the
-        stresses are docs/theory/interior.md (I5)-(I17) and dpdz (I24)-(I28).
+        stresses are docs/theory/interior.md (I5)-(I17) plus, under tangential load, (I23), (I33),
+        and dpdz (I24)-(I28) plus (I34)-(I35).
     profile : a ``Profile`` (``cone``, ``paraboloid``, ``power_law``, ``flat_punch``, ``tabulated``).
     x, y : surface coordinates (x along the tangential load), length unit of the profile; may be
         None when only "stick_radius" is requested.
-    z : depth below the surface (z >= 0, same unit; None: 0).  Where z > 0 the load must be normal
-        (mu = 0 or ux0 = 0), else ValueError (``TANGENTIAL_BELOW``); every value there is finite.
+    z : depth below the surface (z >= 0, same unit; None: 0).  Where z > 0 every value is finite
+        (the edge rings r = a and r = c are singular at z = 0 only).  Under tangential load the 1-D
+        route refuses rtol below ``routes.tangential_floor`` (1e-11 for power laws n < 1).
     a : contact radius; nu : Poisson's ratio; mu : coefficient of friction; ux0 : tangential
         rigid-body displacement u_x0 divided by the indentation depth delta.  All broadcast.
     method : "auto", "closed" or "quadrature" (``routes.resolve``); rtol : accuracy of the
@@ -98,12 +101,7 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
                            scale=scale, dpdz_scale=dpdz_scale)
     route = resolve(profile, method, rtol)
     nu, mu, ux0 = (np.asarray(v, dtype=float) for v in (nu, mu, ux0))
-    c = stick_radius(a, nu, mu, ux0, profile)
-    c_kernel, mu_kernel = c, mu
-    if profile.kind == "flat_punch":
-        stuck = (c == a) & (ux0 > 0) & (mu > 0)
-        mu_kernel = np.where(stuck, 2.0 * (1.0 - nu) / (2.0 - nu) * ux0, mu)
-        c_kernel = np.where(stuck, 0.0, c)
+    c, c_kernel, mu_kernel = _stick(a, nu, mu, ux0, profile)
     out: dict[str, np.ndarray] = {}
     if "stick_radius" in names:
         out["stick_radius"] = c
@@ -122,11 +120,20 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
     return out, route
 
 
+def _stick(a, nu, mu, ux0, profile):
+    """(c, c_kernel, mu_kernel): the stick radius (A32)-(A33) and what the kernels take for it.  A
+    sticking flat punch (c = a with u_x0 > 0 and mu > 0) carries the sliding traction with
+    mu E* delta replaced by G* u_x0 (A37), (A59): the kernels take c = 0, mu = (G*/E*) u_x0/delta."""
+    c = stick_radius(a, nu, mu, ux0, profile)
+    if profile.kind != "flat_punch":
+        return c, c, mu
+    stuck = (c == a) & (ux0 > 0) & (mu > 0)
+    return c, np.where(stuck, 0.0, c), np.where(stuck, 2.0 * (1.0 - nu) / (2.0 - nu) * ux0, mu)
+
+
 def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale, dpdz_scale):
     """``fields`` where some z > 0: the surface fields where z = 0 (the same call as without z, so
     bit for bit the same values), the interior kernels where z > 0; one validity flag."""
-    route = resolve_depth(profile, method, rtol, getattr(profile, "n", None), z)
-    interior_route = resolve_interior(profile, method, rtol)
     dpdz_scale = scale if dpdz_scale is None else dpdz_scale
     arrays = [np.asarray(v, dtype=float) for v in (x, y, z, a, nu, mu, ux0, scale, dpdz_scale)]
     shape = np.broadcast_shapes(*(v.shape for v in arrays))
@@ -134,8 +141,11 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
     deep = Z > 0.0
     if np.any(~(Z >= 0.0)):
         raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
-    if np.any(deep & (MU > 0.0) & (UX0 > 0.0)):
-        raise ValueError(TANGENTIAL_BELOW)
+    _, C, MU_K = (np.broadcast_to(v, shape) for v in _stick(A, NU, MU, UX0, profile))
+    loaded = deep & (MU_K > 0.0) & (C < A)
+    expo, tangential = getattr(profile, "n", None), bool(np.any(loaded))
+    route = resolve_depth(profile, method, rtol, expo, z, tangential=tangential)
+    interior_route = resolve_interior(profile, method, rtol, expo, tangential=tangential)
     valued = [n for n in names if n in _VALUED]
     out: dict[str, np.ndarray] = {}
     if not np.all(deep) or any(n in names for n in ("stick_radius", "region")):
@@ -144,9 +154,15 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
                         dpdz_scale=dpdz_scale)
     kw = dict(method=interior_route.kernel, rtol=rtol)
     P = [v[deep] for v in (X, Y, Z, A, NU)]
+    T = [v[deep] for v in (X, Y, Z, A, C, NU, MU_K)]   # the arguments of the tangential kernels
+    on = np.flatnonzero(loaded[deep])         # the deep points under tangential load
     below = _surface(valued, SC[deep], DSC[deep],
-                     stress=lambda comps: {k: v for k, v in interior_stress(*P, profile, **kw).items() if k in comps},
-                     dpdz=lambda: interior_dpdz(*P, profile, **kw), region=lambda: None)
+                     stress=lambda comps: _add(interior_stress(*P, profile, **kw), on, comps,
+                                               lambda: interior_stress_tangential(*(v[on] for v in T), profile, **kw)),
+                     dpdz=lambda: _add({"dpdz": interior_dpdz(*P, profile, **kw)}, on, ("dpdz",),
+                                       lambda: {"dpdz": interior_dpdz_tangential(*(v[on] for v in T), profile,
+                                                                                 **kw)})["dpdz"],
+                     region=lambda: None)
     for n in valued:
         full = np.empty(shape)
         if n in out:
@@ -154,8 +170,23 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
         full[deep] = below[n]
         out[n] = full
     if "validity" in names:
-        out["validity"] = validity_flag(*(out[n] for n in valued))
+        flag = validity_flag(*(out[n] for n in valued))
+        # below the surface every exact value is finite: a non-finite one there is a point the 1-D
+        # routes do not resolve (r or z below ~1e-100 a, docs/theory/interior.md section 6), said so
+        unresolved = deep & np.any([~np.isfinite(out[n]) for n in valued], axis=0) if valued else deep & False
+        out["validity"] = np.where(unresolved, np.int8(UNRESOLVED), flag).astype(np.int8)
     return out, route
+
+
+def _add(normal: dict, on: np.ndarray, keys, tangential: Callable[[], dict]) -> dict:
+    """The normal part's ``keys`` plus the tangential part at the indices ``on`` (computed only
+    if any): the superposition of docs/theory/interior.md (I23), (I33)."""
+    out = {k: np.array(normal[k], dtype=float) for k in keys}
+    if on.size:
+        part = tangential()
+        for k in keys:
+            out[k][on] += part[k]
+    return out
 
 
 def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu, amplitude, history,

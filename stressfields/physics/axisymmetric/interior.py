@@ -387,7 +387,15 @@ def punch_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
         return 2.0 * (1.0 + nu) / (3.0 * math.pi) * M / S ** 3 * (m2 - 3.0 * n2 * (1.0 + m2) + n2 * n2)
 
 
-def _integrate_dpdz(nd: _Nodes, profile) -> dict[str, np.ndarray]:
+def dpdz_integrator(punch, hertz):
+    """The sum (I28) over the nodes of a group of points for a punch derivative ``punch`` and the
+    matching ``hertz`` (K_d(x; rho) = (1/(pi rho)) d/drho hertz(x/rho), both (x, y, z, nu, rm1=None)
+    at coordinates divided by the radius): the normal load's (I27), (I26) and the sliding ones
+    (I35), (I34)."""
+    return lambda nd, profile: _integrate_dpdz(nd, profile, punch, hertz)
+
+
+def _integrate_dpdz(nd: _Nodes, profile, punch=punch_dpdz_unit, hertz=hertz_dpdz_unit) -> dict[str, np.ndarray]:
     """(I28).  Where the layer lies well inside the contact (d < rho_s/2, d = |(r, z) - (rho_s, 0)|)
     the punch derivative K_d = (1/(pi rho)) d/drho H_d(x/rho) (H_d = ``hertz_dpdz_unit``) is
     integrated by parts against the constant c = g'(rho_s) on [b1, a]: the integrand becomes
@@ -403,13 +411,13 @@ def _integrate_dpdz(nd: _Nodes, profile) -> dict[str, np.ndarray]:
     after = np.arange(rho.shape[1])[None, :] >= nd.first              # the panels [b1, a]
     c_after = np.where(after, c, 0.0)
     dg = np.where(live, profile.dg(rho), 0.0)
-    kd = punch_dpdz_unit(x / rho, y / rho, z / rho, nu, rm1=rm1) / (rho * rho)
-    hd = np.where(after & live, hertz_dpdz_unit(x / rho, y / rho, z / rho, nu, rm1=rm1), 0.0) / (rho * rho)
+    kd = punch(x / rho, y / rho, z / rho, nu, rm1=rm1) / (rho * rho)
+    hd = np.where(after & live, hertz(x / rho, y / rho, z / rho, nu, rm1=rm1), 0.0) / (rho * rho)
     f = np.where(live, (dg - c_after) * kd + c_after * hd / math.pi, 0.0)
     inner = np.sum(f * nd.weights, axis=1)
     b1, a = nd.b1, nd.a
-    ends = (hertz_dpdz_unit(nd.x / a, nd.y / a, nd.z / a, nd.nu, rm1=(np.hypot(nd.x, nd.y) - a) / a) / a
-            - hertz_dpdz_unit(nd.x / b1, nd.y / b1, nd.z / b1, nd.nu) / np.where(b1 > 0.0, b1, 1.0))
+    ends = (hertz(nd.x / a, nd.y / a, nd.z / a, nd.nu, rm1=(np.hypot(nd.x, nd.y) - a) / a) / a
+            - hertz(nd.x / b1, nd.y / b1, nd.z / b1, nd.nu) / np.where(b1 > 0.0, b1, 1.0))
     return {"dpdz": inner + np.where(c[:, 0] != 0.0, c[:, 0] * ends / math.pi, 0.0)}
 
 

@@ -21,6 +21,9 @@ Routes (docs/theory/interior.md (I18)-(I23), (I30)-(I33)):
   z = 0 the tangential part of the surface kernels (docs/theory/axisymmetric.md (A34)-(A41)),
   the limit z -> 0+, with their flags.
 
+``interior_dpdz_tangential`` gives the tangential part of d p_h/dz by the same routes, from the
+trace of the Cerruti superposition, (I34)-(I35).
+
 Units as ``interior_stress``: lengths in the profile's unit, stresses divided by E*.  Components
 "xx", "yy", "zz", "xy", "xz", "yz"; tension positive, z into the body.  Pure NumPy.
 """
@@ -30,12 +33,13 @@ import math
 
 import numpy as np
 
-from .interior import _live, _Nodes, _superpose
-from .interior_hertz import COMPONENTS, sliding_punch_unit, sliding_unit
+from .interior import _live, _Nodes, _superpose, dpdz_integrator
+from .interior_hertz import COMPONENTS, _geometry, sliding_punch_unit, sliding_unit
 from .profiles import Profile
-from .surface import surface_stress
+from .surface import surface_dpdz, surface_stress
 
-__all__ = ["COMPONENTS", "interior_stress_tangential"]
+__all__ = ["COMPONENTS", "interior_stress_tangential", "interior_dpdz_tangential", "sliding_dpdz_unit",
+           "sliding_punch_dpdz_unit"]
 
 METHODS = ("auto", "closed", "quadrature")
 
@@ -170,3 +174,85 @@ def _validate(z, a, c, nu, mu, profile):
         raise ValueError(f"flat punch: the contact radius a must equal the punch radius {profile.radius!r}")
     if np.any(a > profile.max_radius * (1.0 + 1e-12)):
         raise ValueError(f"a (contact radius) exceeds the end of the tabulated profile, r = {profile.max_radius!r}")
+
+
+# -- the depth derivative of the hydrostatic pressure (I34)-(I35) -------------------------------
+
+def sliding_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
+    """d p_h/dz of the Hertz sliding field, divided by q0/a, at coordinates divided by the contact
+    radius: -(2/3)(1 + nu) x N/(S(1 + M^2)) (I34), one product (no cancellation).  Finite for
+    z > 0 and on the surface off the edge ring.  Closed form: relative error at most 1e-12 of
+    |value| where the value is finite.  ``rm1``: r - 1 without rounding (see ``_geometry``)."""
+    x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
+    g = _geometry(x, y, z, rm1)
+    M, N, S = g["M"], g["N"], g["S"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return -(2.0 / 3.0) * (1.0 + np.asarray(nu, dtype=float)) * x * N / (S * (1.0 + M * M))
+
+
+def sliding_punch_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
+    """d p_h/dz of the sliding punch (the traction (1/pi)/sqrt(1 - r^2) along +x, radius 1), at
+    coordinates divided by the radius: (2(1 + nu)/(3 pi)) x N (N^2 - 3M^2)/S^3 (I35).  Finite for
+    z > 0 and on the surface off the edge ring.  Closed form: relative error at most 1e-12 of
+    |value| where the value is finite (where N^2 - 3M^2 passes through zero: of N^2 + 3M^2).
+    ``rm1``: r - 1 without rounding (see ``_geometry``)."""
+    x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
+    g = _geometry(x, y, z, rm1)
+    M, N, S = g["M"], g["N"], g["S"]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return (2.0 * (1.0 + np.asarray(nu, dtype=float)) / (3.0 * math.pi)) * x * N * (N * N - 3.0 * M * M) / S ** 3
+
+
+_SLIDING_DPDZ_KERNEL = (dpdz_integrator(sliding_punch_dpdz_unit, sliding_dpdz_unit), ("dpdz",))
+
+
+def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method: str = "auto",
+                             rtol: float = 1e-10) -> np.ndarray:
+    """Tangential part of d p_h/dz / (E*/length) at (x, y, z), z >= 0, p_h = -trace(sigma)/3;
+    arguments and routes as ``interior_stress_tangential`` (docs/theory/interior.md (I34)-(I35)):
+    the paraboloid mu (p0/a) [H_T(x/a) - H_T(x/c)] (H_T = ``sliding_dpdz_unit``), the flat punch
+    mu (delta/a^2) ``sliding_punch_dpdz_unit``(x/a) for c < a, else the superposition (I28) of
+    the sliding punches' derivatives over [c, a] as mu [Sigma_d(a) - Sigma_d(c)].  Closed forms:
+    relative error at most 1e-12 of |value| where the value is finite; 1-D route: |error| <=
+    rtol * max(|value|, mu p_m/a).  On the surface z = 0 the tangential part of the surface kernel
+    (docs/theory/axisymmetric.md (A53)-(A59)), +-inf at r = c and r = a as there."""
+    if method not in METHODS:
+        raise ValueError(f"unknown tangential interior method {method!r}; allowed: {', '.join(METHODS)}")
+    if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
+        raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z, a, c, nu, mu)))
+    shape = arrays[0].shape
+    x, y, z, a, c, nu, mu = (np.ascontiguousarray(v).ravel() for v in arrays)
+    _validate(z, a, c, nu, mu, profile)
+    family = _family(profile, method)
+    out = np.zeros(x.size)
+    act = (mu > 0.0) & (c < a)
+    surf = np.flatnonzero(act & (z == 0.0))
+    if surf.size:
+        kw = dict(method="closed" if family else "quadrature", rtol=max(rtol, 1e-14))
+        X, Y, A, C, NU, MU = (v[surf] for v in (x, y, a, c, nu, mu))
+        with np.errstate(invalid="ignore"):
+            out[surf] = (surface_dpdz(X, Y, A, C, NU, MU, profile, **kw)
+                         - surface_dpdz(X, Y, A, A, NU, 0.0, profile, **kw))
+    i = np.flatnonzero(act & (z > 0.0))
+    if i.size:
+        out[i] = _dpdz_below(x[i], y[i], z[i], a[i], c[i], nu[i], mu[i], profile, family, rtol)
+    return out.reshape(shape)
+
+
+def _dpdz_below(x, y, z, a, c, nu, mu, profile, family, rtol):
+    if family == "paraboloid":
+        k = mu * 2.0 / (math.pi * float(profile.closed[1]))          # mu p0 / a per E*, (I1)
+        v = sliding_dpdz_unit(x / a, y / a, z / a, nu)
+        part = c > 0.0
+        cs = np.where(part, c, 1.0)
+        v = v - np.where(part, sliding_dpdz_unit(x / cs, y / cs, z / cs, nu), 0.0)
+        return k * v
+    if family == "flat_punch":
+        return mu * profile.depth_ / (a * a) * sliding_punch_dpdz_unit(x / a, y / a, z / a, nu)
+    total = _superpose(x, y, z, a, nu, profile, rtol, _SLIDING_DPDZ_KERNEL)["dpdz"]
+    stick = np.flatnonzero(c > 0.0)
+    if stick.size:
+        total[stick] -= _superpose(x[stick], y[stick], z[stick], c[stick], nu[stick], profile, rtol,
+                                   _SLIDING_DPDZ_KERNEL)["dpdz"]
+    return mu * total

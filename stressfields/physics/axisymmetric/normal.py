@@ -69,6 +69,10 @@ def polar_closed(closed, r, a, nu):
     return szz, srr, sff, dev
 
 
+#: r / a below which F(r)/r^2 is its tip term (see ``polar_from_integrals``)
+_TIP = 1e-100
+
+
 def polar_from_integrals(profile, r, a, nu, G, GE):
     """(szz, srr, sff, dev) of eq. (9) from the t-integrals over [0, arccosh(a/r)] (zero outside):
     G = int g'(u)/sqrt(u^2-r^2) du and GE = the same with weight exp(-2t).
@@ -83,9 +87,11 @@ def polar_from_integrals(profile, r, a, nu, G, GE):
     h = np.minimum(r, a)
     with _err():
         force = 0.5 * profile.normal_force(h) / (r * r)
-        # F(r)/r^2 -> 2 B r^m/(m + 2) at the tip; below r ~ 1e-150 both F(r) and r^2 underflow (0/0)
+        # F(r)/r^2 -> 2 B r^m/(m + 2) at the tip.  Below r = 1.5e-154 the square r^2 is subnormal
+        # (it kept 1e-4 p_m of error at r = 1e-160 a) or 0, and F(r) too; the tip term is exact for
+        # a power law and off by a relative O(r/knot) for a table, so it is taken below 1e-100 a
         m, B = profile.tip_exponent, profile.tip_coefficient
-        force = np.where(r * r > 0.0, force, B * r ** m / (m + 2.0))
+        force = np.where(r > _TIP * a, force, B * r ** m / (m + 2.0))
     K = force + np.where(inside, 0.5 * (G - GE), 0.0)
     szz = np.where(inside, -G / math.pi, 0.0)
     q = 1.0 - 2.0 * nu

@@ -20,6 +20,13 @@ Below the surface (z > 0, normal load; docs/theory/interior.md) ``resolve_interi
   flat-punch fields (I15)-(I17), (I28) by Gauss quadrature, as is the paraboloid under
   ``quadrature``; ``closed`` is refused where no interior closed form exists.
 
+Under tangential load (Cattaneo–Mindlin, ``tangential=True``) the tangential part takes the same
+kind of route: the closed forms (I23), (I33), (I34)-(I35) of the paraboloid and the flat punch, else
+the superposition of sliding punches (I33), (I28) with (I35); its accuracy is relative to mu p_m
+(the traction's scale), so the 1-D route states max(|value|, S max(1, mu)).  Power laws with
+n < 1 (a tip g' ~ rho^m0, m0 < 0) reach rtol = 1e-11 there, not 1e-12 (docs/theory/interior.md
+section 5): smaller rtol is refused.
+
 ``resolve_depth`` joins the two for a set of depths (z = 0 takes the surface route).
 
 The strings of ``resolve`` are written into files; they state the accuracy contract, proved by
@@ -34,7 +41,7 @@ import numpy as np
 
 __all__ = ["METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
            "power_law_family", "has_closed_form", "has_interior_closed_form", "resolve", "resolve_interior",
-           "resolve_depth"]
+           "TANGENTIAL_TIP_RTOL", "resolve_depth", "tangential_floor"]
 
 #: every method the family offers, the default first
 METHODS: tuple[str, ...] = ("auto", "closed", "quadrature")
@@ -52,6 +59,13 @@ _SUPERPOSITION = ("1-D superposition of flat-punch fields below the surface (Gau
 INTERIOR_CLOSED_KINDS: tuple[str, ...] = ("paraboloid", "flat_punch")
 #: the smallest rtol the superposition below the surface reaches (its rounding floor, about 1e-13)
 INTERIOR_RTOL = 1e-12
+#: the smallest rtol of the tangential superposition below the surface for a tip g' ~ rho^m0 with
+#: m0 < 0 (power laws n < 1): Sigma_T(a) - Sigma_T(c) loses eps |Sigma_T(a)|, measured 2e-11 mu p_m
+#: for n = 0.5 at z = 7.6e-10 a on the axis
+TANGENTIAL_TIP_RTOL = 1e-11
+_CLOSED_TANGENTIAL = " (normal and tangential parts)"
+_SUPERPOSITION_TANGENTIAL = ("; tangential part: 1-D superposition of sliding punches (Gauss quadrature, "
+                             "docs/theory/interior.md (I33), (I28) with (I35))")
 
 
 class Route(NamedTuple):
@@ -64,7 +78,8 @@ class Route(NamedTuple):
     @property
     def kernel(self) -> str:
         """The ``method`` argument of the kernels: "closed" or "quadrature"."""
-        return "closed" if self.route in (_CLOSED[0], f"{_CLOSED[0]} below the surface") else "quadrature"
+        head = self.route.split(";")[0].removesuffix(_CLOSED_TANGENTIAL)
+        return "closed" if head in (_CLOSED[0], f"{_CLOSED[0]} below the surface") else "quadrature"
 
 
 def power_law_family(n) -> str | None:
@@ -95,7 +110,10 @@ def resolve(profile, method: str, rtol: float, n=None) -> Route:
     return Route(_QUADRATURE, _quadrature_accuracy(rtol))
 
 
-def _quadrature_accuracy(rtol: float) -> str:
+def _quadrature_accuracy(rtol: float, tangential: bool = False) -> str:
+    if tangential:
+        return (f"|error| <= rtol = {rtol:g} times max(|value|, S max(1, mu)), S the variable's normalisation "
+                "scale: p_m for stresses, p_m/a for dpdz; mu the coefficient of friction")
     return (f"|error| <= rtol = {rtol:g} times max(|value|, the variable's normalisation scale: p_m for stresses, "
             "p_m/a for dpdz)")
 
@@ -106,9 +124,10 @@ def has_interior_closed_form(kind: str, n=None) -> bool:
     return kind in INTERIOR_CLOSED_KINDS or (kind == "power_law" and power_law_family(n) == "paraboloid")
 
 
-def resolve_interior(profile, method: str, rtol: float, n=None) -> Route:
-    """The route below the surface (z > 0, normal load) and its accuracy; arguments as ``resolve``.
-    ``closed`` where no interior closed form exists raises ValueError."""
+def resolve_interior(profile, method: str, rtol: float, n=None, tangential: bool = False) -> Route:
+    """The route below the surface (z > 0) and its accuracy; arguments as ``resolve``, with
+    ``tangential`` whether a tangential (Cattaneo–Mindlin) load acts too.  ``closed`` where no
+    interior closed form exists raises ValueError, and so does rtol below ``tangential_floor``."""
     if not isinstance(profile, str):
         profile, n = profile.kind, getattr(profile, "n", None)
     if method not in METHODS:
@@ -118,18 +137,32 @@ def resolve_interior(profile, method: str, rtol: float, n=None) -> Route:
         raise ValueError(f"method 'closed' has no closed form below the surface for profile {profile!r}; "
                          "use 'auto' or 'quadrature'")
     if profile == "flat_punch" or (closed and method != "quadrature"):
-        return Route(f"{_CLOSED[0]} below the surface", _CLOSED[1])
-    return Route(_SUPERPOSITION, _quadrature_accuracy(rtol))
+        return Route(f"{_CLOSED[0]} below the surface" + (_CLOSED_TANGENTIAL if tangential else ""), _CLOSED[1])
+    if not tangential:
+        return Route(_SUPERPOSITION, _quadrature_accuracy(rtol))
+    floor = tangential_floor(profile, n)
+    if rtol < floor:
+        raise ValueError(f"rtol = {rtol:g} is below {floor:g}, the smallest the tangential superposition below "
+                         f"the surface reaches for a power law with n < 1; use rtol >= {floor:g}")
+    return Route(_SUPERPOSITION + _SUPERPOSITION_TANGENTIAL, _quadrature_accuracy(rtol, tangential=True))
 
 
-def resolve_depth(profile, method: str, rtol: float, n=None, z=None) -> Route:
+def tangential_floor(kind: str, n=None) -> float:
+    """The smallest rtol of the tangential superposition below the surface: ``TANGENTIAL_TIP_RTOL``
+    for a power law with n < 1 (its g' ~ rho^(n-1) tip), else ``INTERIOR_RTOL``."""
+    tip = kind == "power_law" and n is not None and np.ndim(n) == 0 and float(n) < 1.0
+    return TANGENTIAL_TIP_RTOL if tip else INTERIOR_RTOL
+
+
+def resolve_depth(profile, method: str, rtol: float, n=None, z=None, tangential: bool = False) -> Route:
     """The route for the depths ``z`` (None: the surface only): ``resolve`` where every z is 0,
-    ``resolve_interior`` where every z > 0, both ("z = 0: ...; z > 0: ...") for a mix."""
+    ``resolve_interior`` where every z > 0, both ("z = 0: ...; z > 0: ...") for a mix;
+    ``tangential`` as ``resolve_interior``."""
     surface = resolve(profile, method, rtol, n)
     depth = np.asarray(0.0 if z is None else z, dtype=float)
     if not np.any(depth > 0.0):
         return surface
-    interior = resolve_interior(profile, method, rtol, n)
+    interior = resolve_interior(profile, method, rtol, n, tangential)
     if np.all(depth > 0.0):
         return interior
     accuracy = (surface.accuracy if surface.accuracy == interior.accuracy

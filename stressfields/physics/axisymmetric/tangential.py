@@ -56,6 +56,13 @@ def shear_closed(closed, r, a, c, mu):
     raise ValueError(f"no closed form for {kind!r}")  # pragma: no cover
 
 
+def _root_ratio(r, b):
+    """sqrt(r^2 - b^2)/r as sqrt(((r - b)/r) ((r + b)/r)) (0 for r <= b): r - b is exact near the
+    edge r = b (docs/theory/axisymmetric.md (A78)), the value is exactly 1 for b = 0, and no r^2 is
+    formed (it underflows below r = 1.5e-154)."""
+    return np.sqrt(np.maximum(((r - b) / r) * ((r + b) / r), 0.0))
+
+
 def _cone_e3(A, Cc, a, c, r, outside):
     """E3 = 3 - A^2 - A C - C^2 with A = sqrt(1 - a^2/r^2) (0 inside), C = sqrt(1 - c^2/r^2):
     with alpha = a^2/r^2, gamma = c^2/r^2 and 1 - AC = (alpha + gamma - alpha gamma)/(1 + AC),
@@ -113,10 +120,12 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu):
         if kind == "cone":
             p0 = 0.5 * closed[1]
             outside = r > a
-            A = np.where(outside, sqrt_diff(r, a) / r, 0.0)
-            Cc = sqrt_diff(r, c) / r
+            # A = sqrt(1 - a^2/r^2), C = sqrt(1 - c^2/r^2) without r^2: r * r underflows to 0 below
+            # r = 1.5e-154 a, and C = sqrt_diff(r, c)/r then dropped the gross-slip (c = 0, C = 1) part
+            A = np.where(outside, _root_ratio(r, a), 0.0)
+            Cc = _root_ratio(r, c)
             # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C), docs/theory/axisymmetric.md (A90)
-            D1 = np.where(outside, ((a - c) * (a + c) / (r * r)) / (A + Cc), Cc)
+            D1 = np.where(outside, ((a - c) / r) * ((a + c) / r) / (A + Cc), Cc)
             # A^3 - C^3 = -D1 (3 - E3): the brackets of eq. (40) are written with E3 = 3 - A^2 - AC - C^2,
             # formed without cancellation (A96), so that their O(1) parts cancel exactly (by algebra, not
             # in rounding: sigma_yy at nu = 1/2, r = 1e6 a was 1.3e-5 relative off) and what remains is O(a^2/r^2)
