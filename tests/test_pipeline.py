@@ -119,7 +119,7 @@ def test_physical_mode_matches_normalised(scenario, geometry, e_star_over_pm):
     np.testing.assert_allclose(phys.sigma_xz.values, norm.sigma_xz.values * pm, rtol=1e-12, atol=1e-12 * pm)
     np.testing.assert_allclose(phys.dpdz.values, norm.dpdz.values * pm / a, rtol=1e-12)
     assert float(phys.stick_radius) == pytest.approx(float(norm.stick_radius) * a, rel=1e-12)
-    assert phys.sigma_xx.attrs["units"] == "Pa" and phys.dpdz.attrs["units"] == "Pa m-1"
+    assert phys.sigma_xx.attrs["units"] == "Pa" and phys.dpdz.attrs["units"] == "Pa/m"
     assert phys.x.attrs["units"] == "m"
 
 
