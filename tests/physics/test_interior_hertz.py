@@ -19,30 +19,7 @@ from stressfields.physics import axisymmetric as ax
 from stressfields.physics.axisymmetric.interior import interior_stress
 from stressfields.physics.axisymmetric.interior_hertz import hertz_unit, punch_unit
 
-NU = 0.3
-RNG = np.random.default_rng(7)
-POINTS = np.column_stack([RNG.uniform(-1.6, 1.6, 10), RNG.uniform(-1.6, 1.6, 10), RNG.uniform(0.15, 1.6, 10)])
-
-
-def _tensor(f, p, nu=NU):
-    s = f(p[..., 0], p[..., 1], p[..., 2], nu)
-    rows = [("xx", "xy", "xz"), ("xy", "yy", "yz"), ("xz", "yz", "zz")]
-    return np.stack([np.stack([s[c] for c in row], -1) for row in rows], -2)
-
-
-def _residuals(f, h, p=POINTS):
-    """max |div sigma| and max |Beltrami–Michell residual| by central differences of step h."""
-    e = np.eye(3)
-    t = lambda q: _tensor(f, q)
-    div = sum((t(p + h * e[j])[..., :, j] - t(p - h * e[j])[..., :, j]) / (2 * h) for j in range(3))
-    bm = sum((t(p + h * e[k]) - 2 * t(p) + t(p - h * e[k])) / h ** 2 for k in range(3))
-    tr = lambda q: np.trace(t(q), axis1=-2, axis2=-1)
-    for i in range(3):
-        for j in range(3):
-            d2 = (tr(p + h * e[i] + h * e[j]) - tr(p + h * e[i] - h * e[j]) - tr(p - h * e[i] + h * e[j])
-                  + tr(p - h * e[i] - h * e[j])) / (4 * h * h)
-            bm[:, i, j] += d2 / (1 + NU)
-    return np.abs(div).max(), np.abs(bm).max()
+from interior_checks import NU, POINTS, residuals as _residuals
 
 
 @pytest.mark.parametrize("f", [hertz_unit, punch_unit])

@@ -41,6 +41,15 @@ __all__ = ["COMPONENTS", "interior_stress", "interior_dpdz", "interior_orders", 
 
 METHODS = ("auto", "closed", "quadrature")
 
+
+def flat_arguments(what: str, method: str, *values) -> tuple[tuple[int, ...], list[np.ndarray]]:
+    """The entry points' prelude: refuse an unknown method, broadcast the arguments and flatten
+    them (the routes work on 1-D arrays): (the broadcast shape, the flat arrays)."""
+    if method not in METHODS:
+        raise ValueError(f"unknown {what} method {method!r}; allowed: {', '.join(METHODS)}")
+    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in values))
+    return arrays[0].shape, [np.ascontiguousarray(v).ravel() for v in arrays]
+
 #: points per block of the quadrature route (the (points x nodes) work arrays stay small)
 _CHUNK = 2048
 
@@ -86,11 +95,7 @@ def interior_stress(x, y, z, a, nu, profile: Profile, *, method: str = "auto",
     Singular points: the flat punch's edge ring (r = a, z = 0): -inf normal stresses, NaN shears
     (direction-dependent sign); on the surface z = 0 the values and flags of the surface kernels
     (e.g. -inf at a conical tip)."""
-    if method not in METHODS:
-        raise ValueError(f"unknown interior method {method!r}; allowed: {', '.join(METHODS)}")
-    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z, a, nu)))
-    shape = arrays[0].shape
-    x, y, z, a, nu = (np.ascontiguousarray(v).ravel() for v in arrays)
+    shape, (x, y, z, a, nu) = flat_arguments("interior", method, x, y, z, a, nu)
     _validate(z, a, nu, profile)
     family = _closed_family(profile, method)
     if family == "paraboloid":
@@ -321,11 +326,7 @@ def interior_dpdz(x, y, z, a, nu, profile: Profile, *, method: str = "auto", rto
     1-D superposition (I28) of the punch derivative, |error| <= rtol * max(|value|, p_m/a).  On the
     surface z = 0 the surface kernel (docs/theory/axisymmetric.md (A24)-(A27)), the limit z -> 0+,
     with its +-inf at the contact edge and at a conical tip."""
-    if method not in METHODS:
-        raise ValueError(f"unknown interior method {method!r}; allowed: {', '.join(METHODS)}")
-    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z, a, nu)))
-    shape = arrays[0].shape
-    x, y, z, a, nu = (np.ascontiguousarray(v).ravel() for v in arrays)
+    shape, (x, y, z, a, nu) = flat_arguments("interior", method, x, y, z, a, nu)
     _validate(z, a, nu, profile)
     family = _closed_family(profile, method)
     out = np.empty(x.size)

@@ -33,7 +33,7 @@ import math
 
 import numpy as np
 
-from .interior import _live, _Nodes, _superpose, dpdz_integrator
+from .interior import _live, _Nodes, _superpose, dpdz_integrator, flat_arguments
 from .interior_hertz import COMPONENTS, _geometry, sliding_punch_unit, sliding_unit
 from .profiles import Profile
 from .surface import surface_dpdz, surface_stress
@@ -61,13 +61,9 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
     components follow (I32) (+-inf, 0 by symmetry, or NaN where the limit depends on the direction);
     on the surface z = 0 of the 1-D route the values and flags of the surface kernels (e.g. NaN for
     the in-plane components at a conical tip in gross slip).  Elsewhere finite and continuous."""
-    if method not in METHODS:
-        raise ValueError(f"unknown tangential interior method {method!r}; allowed: {', '.join(METHODS)}")
+    shape, (x, y, z, a, c, nu, mu) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
-    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z, a, c, nu, mu)))
-    shape = arrays[0].shape
-    x, y, z, a, c, nu, mu = (np.ascontiguousarray(v).ravel() for v in arrays)
     _validate(z, a, c, nu, mu, profile)
     family = _family(profile, method)
     if family == "paraboloid":
@@ -216,13 +212,9 @@ def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method:
     relative error at most 1e-12 of |value| where the value is finite; 1-D route: |error| <=
     rtol * max(|value|, mu p_m/a).  On the surface z = 0 the tangential part of the surface kernel
     (docs/theory/axisymmetric.md (A53)-(A59)), +-inf at r = c and r = a as there."""
-    if method not in METHODS:
-        raise ValueError(f"unknown tangential interior method {method!r}; allowed: {', '.join(METHODS)}")
+    shape, (x, y, z, a, c, nu, mu) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
-    arrays = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z, a, c, nu, mu)))
-    shape = arrays[0].shape
-    x, y, z, a, c, nu, mu = (np.ascontiguousarray(v).ravel() for v in arrays)
     _validate(z, a, c, nu, mu, profile)
     family = _family(profile, method)
     out = np.zeros(x.size)
