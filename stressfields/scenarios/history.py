@@ -1,10 +1,13 @@
 """Tangential loading histories (fretting) on axisymmetric indenters at constant normal load.
 
-Scenario `axisymmetric_history`: the surface fields of the `axisymmetric` scenarios after every
+Scenario `axisymmetric_history`: the fields of the `axisymmetric` scenarios after every
 step of a tangential displacement history u_x0(t), from the MDR spring memory of eq. (27)-(28)
 (``physics.axisymmetric.history_fields``; docs/theory/axisymmetric.md (A65)-(A77)), plus the tangential
 force, the stick radius, and the energy dissipated by friction.  Parameters, normalisation
-(p_m = F_N/(pi a^2)), physical mode (give E) and flags are those of the `axisymmetric` scenarios.
+(p_m = F_N/(pi a^2)), physical mode (give E) and flags are those of the `axisymmetric` scenarios,
+and so is the depth `z`: below the surface the normal interior field plus the same weighted sum of
+Cattaneo–Mindlin interior fields as on the surface (docs/theory/axisymmetric.md (A69),
+docs/theory/interior.md (I23), (I33)).
 
 The history is a sweep-free array parameter; its index is the dimension `step`.  `step` is an
 ordinary sweepable integer parameter; when the recipe does not give it, the scenario's check fills
@@ -19,8 +22,8 @@ import numpy as np
 
 from ..physics import axisymmetric as ax
 from ..physics.axisymmetric import PRINCIPAL, STRESS
-from .axisymmetric import (A, DELTA, E, MU, N, NU, PROFILE_F, PROFILE_R, R, REFERENCE, SPATIAL, THETA, X, Y,
-                           check_profile, contact, effective_modulus, make_profile, route_of, scales,
+from .axisymmetric import (A, DELTA, DEPTH, E, MU, N, NU, PROFILE_F, PROFILE_R, R, REFERENCE, THETA, X, Y, Z,
+                           check_depth, contact, effective_modulus, make_profile, route_of, scales,
                            surface_point, variables)
 from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
 
@@ -37,15 +40,15 @@ PROFILE = Parameter("profile", "indenter profile", kind=STR, default="paraboloid
 THETA_H = dataclasses.replace(THETA, when={"profile": ("cone",)})
 R_H = dataclasses.replace(R, when={"profile": ("paraboloid",)})
 GEOMETRY = (PROFILE, THETA_H, R_H, N, A, PROFILE_R, PROFILE_F)
-PARAMETERS = (NU, MU, AMPLITUDE, STEP, E, DELTA) + GEOMETRY + (HISTORY, Y, X)
-CASE = tuple(p.name for p in PARAMETERS if p.name not in SPATIAL)
+PARAMETERS = (NU, MU, AMPLITUDE, STEP, E, DELTA) + GEOMETRY + (HISTORY, Z, Y, X)
+CASE = tuple(p.name for p in PARAMETERS if p.name not in DEPTH)
 
 LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle_energy", "ux0")
 
 
 def _history_variables() -> tuple[Variable, ...]:
     base = []
-    for v in variables(CASE, tuple(p.name for p in GEOMETRY)):
+    for v in variables(CASE, tuple(p.name for p in GEOMETRY), DEPTH):
         if v.name == "stick_radius":
             continue
         if v.name == "region":
@@ -98,7 +101,7 @@ def evaluate(names, p, options):
         return out
     scale, dpdz_scale = scales(p, physical, a, profile)
     nu, mu = (np.asarray(p[k], dtype=float) for k in ("nu", "mu"))
-    values, _ = ax.history_fields(local, profile, *surface_point(p, physical, a), a=a, nu=nu, mu=mu,
+    values, _ = ax.history_fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=nu, mu=mu,
                                   amplitude=np.asarray(p["amplitude"], dtype=float), history=p["ux0_history"],
                                   step=p["step"], method=options["method"], rtol=options["rtol"], scale=scale,
                                   dpdz_scale=dpdz_scale)
@@ -114,6 +117,18 @@ def evaluate(names, p, options):
     return out
 
 
+_ROUTE = route_of(default=PROFILE.default)
+
+
+def _route(values, method, rtol):
+    """The route of the `axisymmetric` scenarios, under tangential load where some step moves: the
+    largest |u_x0|/delta of the history stands for their `ux0` (only whether it is > 0 matters)."""
+    history = np.abs(np.asarray(values.get("ux0_history", ()), dtype=float))
+    moved = np.max(np.asarray(values.get("amplitude", AMPLITUDE.default), dtype=float)) * (
+        float(history.max()) if history.size else 0.0)
+    return _ROUTE({**values, "ux0": moved}, method, rtol)
+
+
 def _complete(values):
     """`step` is always a dimension: every step of the history by default, or the ones given."""
     n = len(values.get("ux0_history", ()))
@@ -126,7 +141,7 @@ def _complete(values):
 
 
 def _check(values, physical, method):
-    problems = check_profile(values, physical, method)
+    problems = check_depth()({"profile": PROFILE.default, **values}, physical, method)
     n = len(values.get("ux0_history", ()))
     if n == 0:
         return problems
@@ -140,8 +155,8 @@ def _check(values, physical, method):
 AXISYMMETRIC_HISTORY = Scenario(
     name="axisymmetric_history",
     summary="Rigid axisymmetric indenter (paraboloid, cone, power law, tabulated profile) under constant normal "
-            "load and an arbitrary tangential displacement history (fretting): surface stresses, dp/dz, "
-            "stick zone, tangential force and frictional dissipation per step (MDR springs with memory, "
+            "load and an arbitrary tangential displacement history (fretting): stresses and dp/dz on and below "
+            "the surface, stick zone, tangential force and frictional dissipation per step (MDR springs with memory, "
             "Mindlin-Deresiewicz)",
     theory="axisymmetric",
     references=REFERENCE + "; R. D. Mindlin, H. Deresiewicz, Elastic spheres in contact under varying oblique "
@@ -154,7 +169,7 @@ AXISYMMETRIC_HISTORY = Scenario(
                  "half-space along +x for u_x0 > 0, F_x the force on the half-space along +x"),
     methods=ax.METHODS,
     default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "region") + LOADS,
-    check=_check, complete=_complete, route=route_of(default=PROFILE.default),
+    check=_check, complete=_complete, route=_route,
 )
 
 SCENARIOS: tuple = (AXISYMMETRIC_HISTORY,)

@@ -189,8 +189,8 @@ def _add(normal: dict, on: np.ndarray, keys, tangential: Callable[[], dict]) -> 
     return out
 
 
-def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a, nu, mu, amplitude, history,
-                   step, method: str = "auto", rtol: float = 1e-10, scale=1.0,
+def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, amplitude,
+                   history, step, method: str = "auto", rtol: float = 1e-10, scale=1.0,
                    dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
     """The requested fields after step ``step`` of the tangential displacement history
     u_x0/delta = ``amplitude`` * ``history``, at constant normal load (MDR springs with memory,
@@ -207,11 +207,23 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a,
     the limits mu -> 0+.
 
     ``history``: the values u_x0/delta, in order, from the unloaded start; ``step``: integer
-    indices into it.  a, nu, mu, amplitude, step, x, y, scale and dpdz_scale broadcast (x, y may
+    indices into it.  a, nu, mu, amplitude, step, x, y, z, scale and dpdz_scale broadcast (x, y may
     be None when no surface field is requested).  Units, ``method``, ``rtol``, ``scale`` and
     ``dpdz_scale`` as for ``fields``.  The outputs have the broadcast shape of all arguments.
+
+    ``z``: depth below the surface (z >= 0; None: 0).  Where z > 0 the fields are the normal
+    interior part plus the same superposition (A69) of the c-terms as on the surface, each term
+    w_k times the Cattaneo–Mindlin interior field with stick radius c_k (docs/theory/interior.md
+    (I23), (I33); dp/dz (I34)-(I35)), all finite; the route and its accuracy are those of
+    ``fields`` below the surface (closed forms: relative error at most 1e-12 of |value|
+    everywhere the value is finite, far field and next to edges included).  z = 0 is the surface
+    computation, bit for bit; "region" and the loads do not depend on z.
     """
     names = _known(names, HISTORY_FIELDS)
+    if z is not None and any(n in SPATIAL for n in names) and np.any(np.asarray(z, dtype=float) > 0.0):
+        return _history_with_depth(names, profile, x, y, z, a=a, nu=nu, mu=mu, amplitude=amplitude,
+                                   history=history, step=step, method=method, rtol=rtol, scale=scale,
+                                   dpdz_scale=dpdz_scale)
     route = resolve(profile, method, rtol)
     history = tuple(float(v) for v in np.asarray(history, dtype=float).ravel())
     sts = _memory(history)
@@ -253,6 +265,97 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, *, a,
     if "validity" in names:
         out["validity"] = validity_flag(*(out[n] for n in out if n in _VALUED))
     return out, route
+
+
+def _history_with_depth(names, profile, x, y, z, *, a, nu, mu, amplitude, history, step, method, rtol, scale,
+                        dpdz_scale):
+    """``history_fields`` where some z > 0: the surface call (without z) where z = 0 and for the
+    region and the loads, the interior superposition where z > 0; one validity flag (as
+    ``_with_depth``: a non-finite value below the surface is ``UNRESOLVED``)."""
+    if profile.kind == "flat_punch":
+        # a sticking punch carries a traction the c-terms do not describe (A37); the surface route
+        # has no history for it either
+        raise ValueError("history_fields below the surface: the flat punch has no history route")
+    dpdz_scale = scale if dpdz_scale is None else dpdz_scale
+    keys = ("x", "y", "z", "a", "nu", "mu", "amplitude", "scale", "dpdz_scale")
+    arrays = dict(zip(keys, (np.asarray(v, dtype=float) for v in (x, y, z, a, nu, mu, amplitude, scale,
+                                                                   dpdz_scale))))
+    arrays["step"] = np.asarray(step, dtype=np.int64)
+    shape = np.broadcast_shapes(*(v.shape for v in arrays.values()))
+    full = {k: np.broadcast_to(v, shape) for k, v in arrays.items()}
+    if np.any(~(full["z"] >= 0.0)):
+        raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
+    deep = full["z"] > 0.0
+    valued = [n for n in names if n in _VALUED]
+    top = [n for n in names if n != "validity" and (n not in _VALUED or not np.all(deep))]
+    out: dict[str, np.ndarray] = {}
+    if top:
+        out, _ = history_fields(top, profile, x, y, a=a, nu=nu, mu=mu, amplitude=amplitude, history=history,
+                                step=step, method=method, rtol=rtol, scale=scale, dpdz_scale=dpdz_scale)
+        out = {n: v if n in _VALUED else np.array(np.broadcast_to(v, shape)) for n, v in out.items()}
+    P = {k: v[deep] for k, v in full.items()}
+    terms = _deep_terms(P, profile, _memory(tuple(float(v) for v in np.asarray(history, dtype=float).ravel())))
+    tangential = any(w != 0.0 for _, w, on in terms if on.size)
+    route = resolve_depth(profile, method, rtol, getattr(profile, "n", None), z, tangential=tangential)
+    kw = dict(method=resolve_interior(profile, method, rtol, getattr(profile, "n", None),
+                                      tangential=tangential).kernel, rtol=rtol)
+    at = (P["x"], P["y"], P["z"], P["a"])
+
+    def stress(comps):
+        return _add_terms(interior_stress(*at, P["nu"], profile, **kw), comps, terms, lambda on, c: (
+            interior_stress_tangential(*(v[on] for v in at), c, P["nu"][on], P["mu"][on], profile, **kw)))
+
+    def dpdz():
+        return _add_terms({"dpdz": interior_dpdz(*at, P["nu"], profile, **kw)}, ("dpdz",), terms, lambda on, c: {
+            "dpdz": interior_dpdz_tangential(*(v[on] for v in at), c, P["nu"][on], P["mu"][on], profile, **kw)})
+    below = _surface(valued, P["scale"], P["dpdz_scale"], stress=stress, dpdz=lambda: dpdz()["dpdz"],
+                     region=lambda: None)
+    for n in valued:
+        values = np.empty(shape)
+        if n in out:
+            values[~deep] = np.broadcast_to(out[n], shape)[~deep]
+        values[deep] = below[n]
+        out[n] = values
+    if "validity" in names:
+        flag = validity_flag(*(out[n] for n in valued))
+        unresolved = deep & np.any([~np.isfinite(out[n]) for n in valued], axis=0) if valued else deep & False
+        out["validity"] = np.where(unresolved, np.int8(UNRESOLVED), flag).astype(np.int8)
+    return out, route
+
+
+def _deep_terms(P: dict, profile: Profile, sts: list) -> list[tuple[np.ndarray, float, np.ndarray]]:
+    """The c-terms of the points ``P`` (flat arrays, each point its own step): (c, w, on) with the
+    stick radii c of the points ``on`` (indices into P) that carry the term under tangential load
+    (mu > 0, c < a).  Consecutive terms with the same radii (every term beyond gross slip has
+    c = 0) are merged into one of their net weight, so each distinct field is computed once."""
+    out = []
+    for s in np.unique(P["step"]):
+        idx = np.flatnonzero(P["step"] == s)
+        A, NU, MU = (P[k][idx] for k in ("a", "nu", "mu"))
+        terms = [(lam * P["amplitude"][idx], w) for lam, w in sts[int(s)].terms()]
+        merged: list[list] = []
+        for (_, w), c in zip(terms, hist.stick_radii(terms, A, NU, MU, profile)):
+            if merged and np.array_equal(merged[-1][0], c):
+                merged[-1][1] += w
+            else:
+                merged.append([c, w])
+        for c, w in merged:
+            live = (MU > 0.0) & (c < A)
+            if w != 0.0 and np.any(live):
+                out.append((c[live], float(w), idx[live]))
+    return out
+
+
+def _add_terms(normal: dict, keys, terms, tangential: Callable) -> dict:
+    """The normal part's ``keys`` plus sum_k w_k times the tangential part with stick radius c_k
+    at its points (``_deep_terms``; ``tangential(on, c)``): (A69) with docs/theory/interior.md
+    (I23), (I33).  One term of weight 1 adds the kernel's values unchanged, exactly as ``_add``."""
+    out = {k: np.array(normal[k], dtype=float) for k in keys}
+    for c, w, on in terms:
+        part = tangential(on, c)
+        for k in keys:
+            out[k][on] += w * part[k]
+    return out
 
 
 def contact_radius(profile: Profile, delta) -> np.ndarray:
