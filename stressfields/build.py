@@ -1,5 +1,10 @@
 """Expand a recipe's sweep into coordinates and a lazy, dask-chunked, CF-annotated xr.Dataset.
 
+The [points] columns vary together along one dimension, `point`, placed after the swept ones: each
+column is a 1-D coordinate along it and reaches the scenario's evaluate as an array along the last
+axis of the block, exactly as a swept parameter reaches it along its own axis, so a value at a point
+is the value of the grid at the same coordinates.
+
 Each group of variables that shares the same dimensions is evaluated by one task per chunk
 (`xr.apply_ufunc(..., dask="parallelized")` with one output per variable), so a chunk's shared
 work (e.g. the six stress components behind von Mises and the principal stresses) is done once.
@@ -14,7 +19,7 @@ import xarray as xr
 from dask.array import PerformanceWarning
 
 from . import cf
-from .recipe import Recipe, RecipeError, chunk_problems
+from .recipe import POINT, Recipe, RecipeError, chunk_problems
 from .scenarios.base import ARRAY
 
 #: points per chunk: the measured sweet spot of threaded dask on this kind of machine (~8 MB)
@@ -36,7 +41,9 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
         if par.name not in recipe.values:
             continue
         value = recipe.values[par.name]
-        if par.name in recipe.swept and par.choices:
+        if par.name in recipe.points:
+            coords[par.name] = xr.Variable((POINT,), value, cf.coord_attrs(par, physical))
+        elif par.name in recipe.swept and par.choices:
             # labelled by name in memory (.sel(control="fixed_load"), legends); the writers store
             # it as the CF flag coordinate (writers.encode_choices), sf.open_dataset reads it back
             coords[par.name] = xr.Variable((par.name,), np.asarray(value, dtype=object),
@@ -64,6 +71,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
             (coords if var.coordinate else data_vars)[name] = xr.Variable(dims, arr, attrs)
 
     ds = xr.Dataset(data_vars, coords=coords, attrs=cf.global_attrs(recipe))
+    ds.attrs.update(cf.feature_type(ds.sizes))
     for par in scen.parameters:
         if par.choices and par.name in recipe.values and par.name not in recipe.swept:
             ds.attrs[f"stressfields_{par.name}"] = recipe.values[par.name]
@@ -104,26 +112,48 @@ def _groups(recipe: Recipe) -> dict[tuple[str, ...], list[str]]:
     """Requested variables grouped by their dimensions (in declaration order)."""
     scen = recipe.scenario
     names = list(recipe.variables)
-    # an always-on variable (a validity flag) joins whenever a requested variable spans its dims
+    # an always-on variable (a validity flag) joins whenever a requested variable spans its dims, or,
+    # if it names the variables it describes, whenever one of those is requested
     requested_dims = [set(scen.variable(n).dims or ()) for n in names]
     names += [v.name for v in scen.variables_in(recipe.physical)
-              if v.always and v.name not in names and any(set(v.dims or ()) <= d for d in requested_dims)]
+              if v.always and v.name not in names
+              and (set(v.always) & set(names) if isinstance(v.always, tuple)
+                   else any(set(v.dims or ()) <= d for d in requested_dims))]
     groups: dict[tuple[str, ...], list[str]] = {}
     for name in names:
         deps = scen.variable(name).dims
         dims = tuple(d for d in recipe.swept if deps is None or d in deps)
+        if any(deps is None or c in deps for c in recipe.points):
+            dims += (POINT,)
         groups.setdefault(dims, []).append(name)
     return groups
+
+
+def _inputs(recipe, dims, names, chunking) -> dict[str, xr.DataArray]:
+    """The arrays a group varies with, by parameter: a swept one along its dimension; the [points]
+    columns the group depends on along POINT, chunked alike so that blocks pair up point by point."""
+    scen = recipe.scenario
+    out = {}
+    for dim in dims:
+        if dim != POINT:
+            out[dim] = xr.DataArray(recipe.values[dim], dims=(dim,)).chunk({dim: chunking[dim]})
+            continue
+        deps = [scen.variable(n).dims for n in names]
+        for col in recipe.points:
+            if any(d is None or col in d for d in deps):
+                out[col] = xr.DataArray(recipe.values[col], dims=(POINT,)).chunk({POINT: chunking[POINT]})
+    return out
 
 
 def _evaluate_group(recipe, dims, names, fixed, options, chunking):
     scen = recipe.scenario
     dtypes = [np.dtype(scen.variable(n).dtype) for n in names]
+    inputs = _inputs(recipe, dims, names, chunking) if dims else {}
     # parameters this group depends on that are swept but not dimensions of the group are
     # impossible by construction (dims = swept dependencies); scalars pass as keywords
     def kernel(*blocks):
         params = dict(fixed)
-        params.update(zip(dims, blocks))
+        params.update(zip(inputs, blocks))
         shape = np.broadcast_shapes(*(np.shape(b) for b in blocks)) if blocks else ()
         # singular points give inf/NaN on purpose; the scenario flags them in the data
         with np.errstate(all="ignore"):
@@ -133,12 +163,11 @@ def _evaluate_group(recipe, dims, names, fixed, options, chunking):
 
     if not dims:
         return [np.asarray(v) for v in kernel()]
-    inputs = [xr.DataArray(recipe.values[d], dims=(d,)).chunk({d: chunking[d]}) for d in dims]
     with warnings.catch_warnings():
         # dask notes that broadcasting 1-D coordinates multiplies chunks: that is the point
         warnings.simplefilter("ignore", category=PerformanceWarning)
         out = xr.apply_ufunc(
-            kernel, *inputs,
+            kernel, *inputs.values(),
             output_core_dims=[[] for _ in names],
             dask="parallelized",
             output_dtypes=dtypes,
@@ -159,12 +188,13 @@ def estimate(recipe: Recipe, chunks: dict[str, int] | None = None, sample_points
     # dataset instead would still compute whole chunks
     def timed(n: int) -> tuple[float, int]:
         values, points = dict(recipe.values), recipe.size
-        for dim in recipe.swept:
+        for dim, size in recipe.shape.items():
             if points <= n:
                 break
-            keep = max(1, len(values[dim]) * n // points)
-            points = points // len(values[dim]) * keep
-            values[dim] = values[dim][:keep]
+            keep = max(1, size * n // points)
+            points = points // size * keep
+            for name in recipe.points if dim == POINT else (dim,):
+                values[name] = values[name][:keep]
         sample = build(dataclasses.replace(recipe, values=values))
         start = time.perf_counter()
         sample.compute(scheduler="threads")

@@ -192,9 +192,13 @@ def _evaluate(kind: str | None):
         profile = make_profile(kind or p["profile"], p, physical)
         a, out = contact(names, p, profile, physical)
         local = [n for n in names if n in ax.FIELDS]
-        if not local:
+        if not local and not any(n in ax.PEAKS for n in names):
             return out
         scale, dpdz_scale = scales(p, physical, a, profile)
+        if any(n in ax.PEAKS for n in names):
+            out.update(peak_values(names, p, options, profile, a, scale, physical))
+        if not local:
+            return out
         values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=_f(p, "nu"),
                               mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"], rtol=options["rtol"],
                               scale=scale, dpdz_scale=dpdz_scale)
@@ -204,6 +208,23 @@ def _evaluate(kind: str | None):
         return out
 
     return evaluate
+
+
+def peak_values(names, p, options, profile, a, scale, physical) -> dict:
+    """The requested peak variables: ``physics.axisymmetric.peaks`` per case, stresses times the
+    stress scale, positions divided by a (normalised) or in metres (physical)."""
+    found = ax.peaks(profile, a=a, nu=_f(p, "nu"), mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"],
+                     rtol=options["rtol"])
+    length = 1.0 if physical else a
+    out = {}
+    for n in (n for n in names if n in ax.PEAKS):
+        if n == "peak_validity":
+            out[n] = found[n]
+        elif n.endswith(("_r", "_depth")):
+            out[n] = found[n] / length
+        else:
+            out[n] = found[n] * scale
+    return out
 
 
 def check_profile(values, physical, method):
@@ -304,12 +325,52 @@ def route_of(kind: str | None = None, default: str = PROFILE.default):
     return route
 
 
+_SEARCH = ("Found by a converged search (physics.axisymmetric.peaks): a coarse grid on the load axis y = 0 "
+           "(x >= 0 under normal load, both signs of x under tangential load; depths 0 and 1e-3 a to 3a), then "
+           "a bounded Nelder-Mead refinement in (x, z) to 1e-9 a; the surface z = 0 is searched too. The value "
+           "is the field at the refined point (the fields' accuracy; the refinement stops when its values differ "
+           "by < 1e-14 of the peak); "
+           "the position is accurate to about 1e-7 a. Where the field is unbounded at a surface singular "
+           "point (cone tip and power laws n <= 1 at r = 0, a tabulated spline with a nonzero slope at r = 0, "
+           "flat-punch edge r = a) the peak is +inf at that point, depth 0, and "
+           "peak_validity is 1.")
+
+
+def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
+    """The per-case peaks of tau_max and von Mises below the surface and where they sit."""
+    out = []
+    for name, what in (("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"),
+                       ("von_mises", "von Mises equivalent stress sqrt(3 J2)")):
+        out += [
+            Variable(f"{name}_peak", f"largest {what} in the half-space z >= 0", units_physical="Pa",
+                     scale=PM, dims=case, comment=_SEARCH),
+            Variable(f"{name}_peak_r", f"x coordinate (on the load axis y = 0; the radius r >= 0 under normal "
+                     f"load) of the largest {what}", units_physical="m", scale="the contact radius a",
+                     dims=case, comment=_SEARCH),
+            Variable(f"{name}_peak_depth", f"depth z below the surface of the largest {what}",
+                     units_physical="m", scale="the contact radius a", dims=case, comment=_SEARCH),
+        ]
+    out.append(Variable(
+        "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
+        flag_values=(0, 1, 2, 4),
+        flag_meanings=("finite", "unbounded_at_singular_point", "undefined_direction_dependent_limit",
+                       "search_not_converged"),
+        comment="0: the peaks are within the stated accuracy; 1: the field is unbounded at a surface singular "
+                "point (e.g. cone tip, flat-punch edge): the peaks are +inf there, depth 0; 2: the field is NaN at "
+                "a surface singular point (a direction-dependent limit): the peaks are NaN; 4: the refinement "
+                "did not converge or ended on the border of the search box (|x| = 2a, z = 3a): the values are "
+                "the best found, not the peaks. Written whenever a peak variable is.",
+        always=tuple(v.name for v in out)))
+    return tuple(out)
+
+
 def _scenario(name, summary, geometry, kind):
     params = (NU, MU, UX0, E, DELTA) + geometry + (Z, Y, X)
     case = tuple(p.name for p in params if p.name not in DEPTH)
     return Scenario(
         name=name, summary=summary, references=REFERENCE, theory="axisymmetric", parameters=params,
-        variables=variables(case, tuple(p.name for p in geometry), DEPTH), evaluate=_evaluate(kind),
+        variables=variables(case, tuple(p.name for p in geometry), DEPTH) + peak_variables(case),
+        evaluate=_evaluate(kind),
         physical_switch="E", methods=ax.METHODS,
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),
         check=check_depth(kind), route=route_of(kind),

@@ -167,8 +167,9 @@ class Variable:
     flag_meanings: tuple[str, ...] = ()
     comment: str | None = None
     mode: str | None = None
-    #: computed whenever any other variable is requested (e.g. the validity flag)
-    always: bool = False
+    #: computed whenever any other variable spanning its dims is requested (True, e.g. the validity
+    #: flag), or whenever one of the named variables is (a tuple: the flag of those variables only)
+    always: bool | tuple[str, ...] = False
     #: stored as a coordinate (not a dimension): a value the others are read and plotted against,
     #: e.g. the displacement of each step of a history (``ds.plot(x="ux0")``)
     coordinate: bool = False

@@ -16,6 +16,7 @@ from .fields import (FIELDS, HISTORY_FIELDS, HISTORY_LOADS, INVARIANTS, PRINCIPA
                      contact_radius, fields, history_fields, validity_flag)
 from .interior import interior_dpdz, interior_stress
 from .interior_tangential import interior_dpdz_tangential, interior_stress_tangential
+from .peaks import PEAKS, peaks
 from .profiles import (FlatPunch, Cone, Paraboloid, PowerLaw, Profile, Tabulated, cone, flat_punch,
                        paraboloid, power_law, tabulated)
 from .routes import (INTERIOR_RTOL, METHODS, TANGENTIAL_TIP_RTOL, Route, has_closed_form,
@@ -33,4 +34,5 @@ __all__ = [
     "METHODS", "INTERIOR_RTOL", "TANGENTIAL_TIP_RTOL", "tangential_floor",
     "Route", "has_closed_form", "has_interior_closed_form", "resolve",
     "resolve_interior", "resolve_depth",
+    "PEAKS", "peaks",
 ]
