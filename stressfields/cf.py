@@ -62,6 +62,12 @@ def global_attrs(recipe) -> dict[str, str]:
     }
 
 
+def feature_type(sizes) -> dict[str, str]:
+    """CF-1.8 discrete sampling geometry: ``featureType = "point"`` when the user's points are the
+    dataset's only dimension (with swept dimensions beside them the data is a grid, not a DSG)."""
+    return {"featureType": "point"} if set(sizes) == {"point"} else {}
+
+
 def coord_attrs(par: Parameter, physical: bool) -> dict[str, str]:
     attrs = {"long_name": par.meaning_in(physical)}
     if not par.choices:

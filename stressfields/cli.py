@@ -208,10 +208,10 @@ def _run(args) -> int:
     jobs = []
     for path in args.recipes:      # validate everything before computing anything
         recipe = load(path)
-        bad = set(chunks) - set(recipe.swept)
+        bad = set(chunks) - set(recipe.dims)
         if bad:
             raise UsageError(f"--chunks: {', '.join(sorted(bad))} is not a swept dimension of {path} "
-                             f"(swept: {', '.join(recipe.swept) or 'none'})")
+                             f"(swept: {', '.join(recipe.dims) or 'none'})")
         wanted = {**recipe.chunks, **chunks}
         check_chunks(recipe.shape, wanted, default_chunks(recipe.shape, wanted))   # task count, before any work
         target = args.output or args.out_dir / f"{path.stem}.nc"

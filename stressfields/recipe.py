@@ -15,11 +15,15 @@ A recipe::
     method = "auto"
     rtol = 1e-10
     [plot]                # optional: the quick-look PNG (see plot.py)
+    [points]              # optional: columns of equal length that vary together along `point`
+    x = [0.1, 0.5, 2.0]
+    z = [0.2, 0.0, 0.5]
 
 Every error names the key, the value and what is allowed; all errors are reported at once.
 Bounds are checked before any work: the file (a regular file of at most MAX_RECIPE_BYTES, UTF-8,
 keys of at most MAX_KEY_PARTS dotted parts, at most MAX_NESTING nested arrays/tables), each sweep
-(at most MAX_SWEEP values) and their product (at most MAX_POINTS) from the sweep specifications,
+(at most MAX_SWEEP values) and their product (at most MAX_POINTS) from the sweep specifications
+and the length of the [points] columns,
 ARRAY parameters (their declared size limit), and the chunk count of output.chunks.
 """
 from __future__ import annotations
@@ -43,7 +47,9 @@ from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
 from .writers import output_option_problems
 
-TOP_KEYS = ("scenario", "title", "parameters", "output", "method", "plot")
+TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot")
+#: the dimension along which the [points] columns vary together (last, after the swept ones)
+POINT = "point"
 OUTPUT_KEYS = ("variables", "chunks", "dtype", "compression", "nonfinite")
 METHOD_KEYS = ("method", "rtol")
 PLOT_KEYS = ("x", "variables", "hue", "kind", "ylim", "marker")
@@ -104,6 +110,14 @@ class Recipe:
     plot: dict
     #: how values are stored ([output] dtype, compression, nonfinite; see writers.OutputOptions)
     storage: dict = field(default_factory=dict)
+    #: the [points] columns (declaration order): 1-D arrays of one length in ``values``, varying
+    #: together along the dimension POINT, which comes after the swept ones
+    points: tuple[str, ...] = ()
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        """The dataset's dimensions in order: the swept parameters, then POINT if [points] is given."""
+        return self.swept + ((POINT,) if self.points else ())
 
     @property
     def sha256(self) -> str:
@@ -111,11 +125,14 @@ class Recipe:
 
     @property
     def shape(self) -> dict[str, int]:
-        return {name: len(self.values[name]) for name in self.swept}
+        sizes = {name: len(self.values[name]) for name in self.swept}
+        if self.points:
+            sizes[POINT] = len(self.values[self.points[0]])
+        return sizes
 
     @property
     def size(self) -> int:
-        return int(np.prod(list(self.shape.values()), dtype=np.int64)) if self.swept else 1
+        return int(np.prod(list(self.shape.values()), dtype=np.int64)) if self.dims else 1
 
 
 def load(source: str | Path | Mapping) -> Recipe:
@@ -218,7 +235,13 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     physical = scen.physical_switch is None or scen.physical_switch in params
     mode = "physical" if physical else "normalised"
     values: dict[str, Any] = {}
-    rejected = _sweep_sizes(params, declared, problems)   # before any sweep is expanded
+    points_raw = _points_table(data, problems)
+    n_points = _points_size(points_raw, problems)          # from the lengths, before any parsing
+    rejected = _sweep_sizes(params, declared, problems, n_points)   # before any sweep is expanded
+    columns = {} if n_points is None or POINT in rejected else _parse_points(
+        points_raw, declared, params, scen, problems)
+    # a refused column is already reported: not "missing" as well
+    rejected |= {k for k in points_raw if k not in columns and k not in params}
     for key, raw in params.items():
         if key in rejected:
             continue
@@ -233,6 +256,8 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
             rejected.add(key)   # already reported: not "missing" as well
         else:
             values[key] = value
+    values.update(columns)
+    given = set(params) | set(columns)
     # applicability: mode and `when` conditions
     for key in list(values):
         par = declared[key]
@@ -247,7 +272,7 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     for key in list(values):
         par = declared[key]
         if not _applies(par, values, declared, mode) and par.when:
-            if key in params:
+            if key in given:
                 problems.append(f"parameter '{key}' is only used when {par.condition()}")
             del values[key]
     for par in scen.parameters:
@@ -260,33 +285,41 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     if scen.check and not problems:
         problems += scen.check(values, physical, method_t.get("method", "auto"))
 
-    swept = tuple(p.name for p in scen.parameters if isinstance(values.get(p.name), np.ndarray))
+    swept = tuple(p.name for p in scen.parameters
+                  if isinstance(values.get(p.name), np.ndarray) and p.name not in columns)
+    points = tuple(p.name for p in scen.parameters if p.name in columns and p.name in values)
+    dims = swept + ((POINT,) if points else ())
     variables = _variables(scen, output.get("variables"), physical, problems)
-    chunks = _chunks(output.get("chunks", {}), swept, problems)
+    chunks = _chunks(output.get("chunks", {}), dims, problems)
     storage = {k: output[k] for k in ("dtype", "compression", "nonfinite") if k in output}
     problems += [f"output.{p}" for p in output_option_problems(**storage)]
     if not problems:
-        problems += chunk_problems({s: len(values[s]) for s in swept}, chunks, "output.chunks")
+        problems += chunk_problems({d: len(values[points[0] if d == POINT else d]) for d in dims}, chunks,
+                                   "output.chunks")
     method, rtol = _method(scen, method_t, problems)
     title = data.get("title", f"stressfields {name}")
     if not isinstance(title, str):
         problems.append(f"title = {show(title)} must be a string")
-    if not problems:
+    if plot and points:
+        problems.append("[plot] draws lines and maps over swept parameters; it is not available with [points]")
+    elif not problems:
         problems += _plot(scen, plot, swept, variables, physical)
     if problems:
         raise RecipeError(problems, label)
 
     canonical_dict = {
         "scenario": name,
-        "parameters": {k: _jsonable(values[k]) for k in sorted(values)},
+        "parameters": {k: _jsonable(values[k]) for k in sorted(values) if k not in points},
         "output": {"variables": list(variables), "chunks": dict(sorted(chunks.items()))},
         "method": {"method": method, "rtol": rtol},
     }
     if storage:                     # only when given: recipes without them keep their hash
         canonical_dict["output"].update(sorted(storage.items()))
+    if points:                      # likewise
+        canonical_dict["points"] = {k: _jsonable(values[k]) for k in sorted(points)}
     canonical = json.dumps(canonical_dict, sort_keys=True, separators=(",", ":"))
     return Recipe(scen, values, swept, physical, variables, chunks, method, rtol, title,
-                  text if text is not None else canonical, canonical, dict(plot), storage)
+                  text if text is not None else canonical, canonical, dict(plot), storage, points)
 
 
 def _hint(scen: Scenario, key) -> str:
@@ -317,10 +350,13 @@ def _sweep_size(raw) -> int | None:
     return None
 
 
-def _sweep_sizes(params: dict, declared: dict, problems: list[str]) -> set[str]:
-    """Check each sweep's size and their product from the specifications; the keys refused."""
+def _sweep_sizes(params: dict, declared: dict, problems: list[str], n_points: int | None = None) -> set[str]:
+    """Check each sweep's size and their product (with the [points] count) from the specifications;
+    the keys refused (POINT among them if the points are)."""
     sizes = {k: n for k, raw in params.items() if k in declared and declared[k].kind != ARRAY
              and (n := _sweep_size(raw)) is not None}
+    if n_points is not None:
+        sizes[POINT] = n_points
     refused = {k for k, n in sizes.items() if n > MAX_SWEEP}
     for key in refused:
         problems.append(f"{key}: a sweep of {sizes[key]:,} values; at most {MAX_SWEEP:,} per parameter")
@@ -330,6 +366,94 @@ def _sweep_sizes(params: dict, declared: dict, problems: list[str]) -> set[str]:
         problems.append(f"the sweep {what} has {total:.3g} points; at most {MAX_POINTS:.0e} are allowed")
         refused |= set(sizes)
     return refused
+
+
+def _points_table(data: dict, problems: list[str]) -> dict:
+    """The [points] table (a dict of columns in the Python API), or {} if not given."""
+    table = data.get("points", {})
+    if not isinstance(table, Mapping):
+        problems.append(f"'points' must be a table of columns like {{ x = [0.1, 0.5], z = [0.2, 0.0] }}, "
+                        f"got {show(table)}")
+        return {}
+    if "points" in data and not table:
+        problems.append("[points] has no column; give at least one, e.g. x = [0.1, 0.5]")
+    return dict(table)
+
+
+def _points_size(table: dict, problems: list[str]) -> int | None:
+    """The number of points, from the columns' lengths only (None: no points, or refused)."""
+    lengths = {k: len(v) for k, v in table.items()
+               if isinstance(v, (list, tuple)) or (isinstance(v, np.ndarray) and v.ndim == 1)}
+    for key, raw in table.items():
+        if key not in lengths:
+            problems.append(f"points.{show(key)} = {show(raw)} must be a list (or 1-D array) of values")
+    if not lengths or len(lengths) < len(table):
+        return None
+    if len(set(lengths.values())) > 1:
+        problems.append("[points] columns must have one length (one value per point): "
+                        + ", ".join(f"{k} has {n:,}" for k, n in lengths.items()))
+        return None
+    n = next(iter(lengths.values()))
+    if n == 0:
+        problems.append("[points] columns are empty; give at least one point")
+        return None
+    if n > MAX_SWEEP:
+        problems.append(f"[points] has {n:,} points; at most {MAX_SWEEP:,}")
+        return None
+    return n
+
+
+def _parse_points(table: dict, declared: dict, params: dict, scen: Scenario,
+                  problems: list[str]) -> dict[str, np.ndarray]:
+    """The [points] columns as 1-D arrays, each value checked against its parameter's range.
+
+    Unlike a sweep, a column may repeat values and go both ways: it is not a dimension coordinate.
+    """
+    columns = {}
+    for key, raw in table.items():
+        if key not in declared:
+            problems.append(f"points: unknown parameter {show(key)} for scenario '{scen.name}'{_hint(scen, key)}; "
+                            f"allowed: {', '.join(p for p in declared if _is_column(declared[p]))}")
+        elif key in params:
+            problems.append(f"points.{key}: '{key}' is also given in [parameters]; give it in one place")
+        elif not _is_column(declared[key]):
+            par = declared[key]
+            what = "a choice" if par.choices else "an array" if par.kind == ARRAY else "a single-value"
+            problems.append(f"points.{key}: '{key}' cannot be a points column ({what} parameter); "
+                            "give it in [parameters]")
+        elif (column := _parse_column(declared[key], raw, problems)) is not None:
+            columns[key] = column
+    return columns
+
+
+def _is_column(par: Parameter) -> bool:
+    return par.sweepable and par.kind != ARRAY and not par.choices
+
+
+def _parse_column(par: Parameter, raw, problems: list[str]) -> np.ndarray | None:
+    """One column: numbers only (type checked one by one for lists), range checked vectorised."""
+    key = par.name
+    if isinstance(raw, np.ndarray):
+        bad_type = None if raw.dtype.kind in "iuf" else 0
+    else:
+        bad_type = next((i for i, v in enumerate(raw) if isinstance(v, bool) or not isinstance(v, (int, float))),
+                        None)
+    if bad_type is not None:
+        v = raw[bad_type]
+        problems.append(f"points.{key}[{bad_type}] = {show(v)} must be {par.allowed()}, got a "
+                        f"{type(v).__name__ if not isinstance(raw, np.ndarray) else raw.dtype}")
+        return None
+    try:
+        arr = np.asarray(raw, dtype=np.float64)
+    except OverflowError:           # an integer beyond the float range
+        arr = np.array([float(v) if abs(v) < 1e308 else np.inf for v in raw])
+    first_bad = par.check_many(arr)
+    if first_bad:
+        value, why = first_bad
+        i = int(np.flatnonzero((arr == value) | (np.isnan(arr) & np.isnan(value)))[0])
+        problems.append(f"points.{key}[{i}] = {show(raw[i] if not isinstance(raw, np.ndarray) else value)} {why}")
+        return None
+    return arr.astype(np.int32) if par.kind == "int" else arr    # CF-1.8: no int64
 
 
 def chunk_problems(sizes: dict[str, int], chunks: dict[str, int], source: str) -> list[str]:

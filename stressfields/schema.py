@@ -18,7 +18,10 @@ reference scale they are divided by; every computed field also says how it was c
 
 Dimensions are the swept parameters, in the order listed per scenario (spatial `x`, `y` last);
 a parameter given as a single value becomes a scalar coordinate; a parameter of choice (e.g.
-`profile`) given once is stored as the global attribute `stressfields_<name>`. Global attributes:
+`profile`) given once is stored as the global attribute `stressfields_<name>`. The columns of a
+recipe's `[points]` table (the user's own points, of one length) vary together along one dimension
+`point`, after the swept ones; each column is a coordinate along `point`, and a dataset whose only
+dimension is `point` carries `featureType = "point"` (CF discrete sampling geometry). Global attributes:
 `Conventions`, `title`, `institution`, `source`, `history`, `references`, `comment`,
 `stressfields_version`, `stressfields_scenario`, `stressfields_units_mode` (normalised | physical),
 `stressfields_recipe` (the recipe text), `stressfields_recipe_canonical` and

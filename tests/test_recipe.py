@@ -183,3 +183,11 @@ def test_every_declared_variable_can_be_requested():
         for var in scen.variables_in(physical):         # validity and converged included
             got = load({"scenario": name, "parameters": MINIMAL[name], "output": {"variables": [var.name]}})
             assert got.variables == (var.name,)
+
+
+def test_points_is_a_top_level_table():
+    """[points] (tests/test_points.py) is a known table; a misspelt one is named with the allowed keys."""
+    r = load({**BASE, "parameters": {}, "points": {"x": [0.5, 0.1, 0.5]}})
+    assert r.points == ("x",) and r.swept == () and r.shape == {"point": 3}
+    msg = problems({**BASE, "point": {"x": [0.5]}})
+    assert "unknown key 'point'" in msg and "points" in msg
