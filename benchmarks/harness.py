@@ -43,10 +43,13 @@ class Config:
     peer_grids: tuple      # n of the n x n ContactMechanics grids
     pipeline_n: int        # the pipeline-throughput grid is pipeline_n x pipeline_n
     throughput: bool = True
+    #: n of the n x n whole-process runs against the hand loop (1e6, 1e7 points; with the
+    #: environment variable STRESSFIELDS_BENCH_BIG=1 also 1e8, which takes ~10 minutes)
+    process_n: tuple = (1000, 3163)
 
 
 FULL = Config(points=20_000, repeats=7, peer_grids=(128, 256, 512, 1024), pipeline_n=2000)
-QUICK = Config(points=4_000, repeats=3, peer_grids=(64, 128, 256), pipeline_n=1000)
+QUICK = Config(points=4_000, repeats=3, peer_grids=(64, 128, 256), pipeline_n=1000, process_n=(1000,))
 TINY = Config(points=300, repeats=1, peer_grids=(32,), pipeline_n=100, throughput=False)   # smoke test
 
 
@@ -128,6 +131,44 @@ def _axisymmetric(cfg: Config) -> dict:
             variants += [(QUAD, rtol, lambda fn=fn, rtol=rtol: fn("quadrature", rtol)) for rtol in RTOLS]
             indep = fn("quadrature", REF_RTOL) if closed else None
             out[f"axisymmetric {label}, partial slip: {field}"] = _rows(ref, pm, variants, x.size, cfg.repeats, indep)
+    return out
+
+
+#: the finest rtol of the 1-D routes below the surface (their reference)
+INTERIOR_REF_RTOL = 1e-12
+
+
+def _interior(cfg: Config) -> dict:
+    """Below the surface: the six stresses at random points r <= 2a, 1e-3 a <= z <= 3a, every
+    route; reference the closed form (its own error against the 1-D route at rtol 1e-12), else
+    the 1-D route at rtol 1e-12."""
+    from stressfields.physics import axisymmetric as ax
+
+    m = max(20, cfg.points // 4)          # the 1-D route runs at ~1e4-1e5 points per second
+    x, y = _disk_points(m, 2.0, 5)
+    z = np.geomspace(1e-3, 3.0, m)[np.random.default_rng(6).permutation(m)]
+    nu, mu, ux0 = 0.3, 0.4, 0.25
+    out = {}
+    for label, profile in (("paraboloid", ax.paraboloid(1.0)), ("cone", ax.cone(1.0)),
+                           ("power law n = 3", ax.power_law(1.0, 3.0))):
+        c = float(ax.stick_radius(1.0, nu, mu, ux0, profile))
+        pm = float(ax.mean_pressure(1.0, profile))
+        for load in ("normal", "partial slip"):
+            def stress(method, rtol, profile=profile, c=c, load=load):
+                s = ax.interior_stress(x, y, z, 1.0, nu, profile, method=method, rtol=rtol)
+                if load != "normal":
+                    t = ax.interior_stress_tangential(x, y, z, 1.0, c, nu, mu, profile, method=method, rtol=rtol)
+                    s = {k: s[k] + t[k] for k in s}
+                return np.stack([s[k] for k in ax.COMPONENTS])
+
+            closed = ax.has_interior_closed_form(profile.kind, getattr(profile, "n", None))
+            quad = stress("quadrature", INTERIOR_REF_RTOL)
+            ref = stress("closed", INTERIOR_REF_RTOL) if closed else quad
+            variants = [(CLOSED, 0.0, lambda fn=stress: fn("closed", INTERIOR_REF_RTOL))] if closed else []
+            variants += [(QUAD, rt, lambda fn=stress, rt=rt: fn("quadrature", rt)) for rt in RTOLS
+                         if rt >= INTERIOR_REF_RTOL]
+            out[f"below the surface, {label}, {load}: six stresses"] = _rows(
+                ref, pm, variants, m, cfg.repeats, quad if closed else None)
     return out
 
 
@@ -373,6 +414,50 @@ def _hertz_mindlin_512(repeats: int) -> dict:
     return out
 
 
+def _tabulated_rates(repeats: int) -> dict:
+    """Points per CPU second of the tabulated routes at rtol 1e-10 for a 1000-sample profile: the
+    axisymmetric surface stresses (partial slip) and the graded pressure and surface displacement."""
+    from stressfields.physics import axisymmetric as ax
+    from stressfields.physics.graded import normal as N
+    from stressfields.physics.graded import profiles as P
+
+    rs = np.linspace(0.0, 1.2, 1000)
+    hyper = ax.tabulated(rs, np.sqrt(rs ** 2 + 0.04) - 0.2)
+    c = float(ax.stick_radius(1.0, 0.3, 0.4, 0.25, hyper))
+    x, y = _disk_points(2000, 1.5, 7)
+    _, cpu = _wall_cpu(lambda: ax.surface_stress(x, y, 1.0, c, 0.3, 0.4, hyper, method="quadrature", rtol=1e-10),
+                       repeats)
+    out = {"tabulated_axisymmetric_points_per_cpu_s": x.size / cpu}
+    a = 1e-3
+    prof = P.Tabulated(rs * a, (np.sqrt(rs ** 2 + 0.04) - 0.2) * a)
+    kw = dict(k=0.5, nu=0.3, E0=1e9, c0=1e-3)
+    r = np.linspace(0.0, 2.0, 200) * a
+    _, cpu = _wall_cpu(lambda: N.pressure_quad(r[r < a], a, prof, rtol=1e-10, **kw), max(1, repeats // 3))
+    out["tabulated_graded_pressure_points_per_cpu_s"] = float(np.sum(r < a)) / cpu
+    _, cpu = _wall_cpu(lambda: N.surface_displacement_quad(r, a, prof, k=0.5, rtol=1e-10), max(1, repeats // 3))
+    out["tabulated_graded_uz_points_per_cpu_s"] = r.size / cpu
+    return out
+
+
+def _whole_process(cfg: Config) -> dict:
+    """Fresh-process runs against the hand loop (benchmarks/process.py), fixed costs, the first
+    call of a 512^2 Hertz-Mindlin case, and this machine's disk and SHA-256 rates."""
+    if str(Path(__file__).parent) not in sys.path:      # loaded by path from `stressfields bench`
+        sys.path.insert(0, str(Path(__file__).parent))
+    import process
+
+    sizes = cfg.process_n + ((10_000,) if os.environ.get("STRESSFIELDS_BENCH_BIG") == "1" else ())
+    out = {}
+    for n in sizes:
+        for label, names in (("all", process.ELEVEN), ("von_mises", ("von_mises",))):
+            r = process.pipeline_vs_hand(n, names, pairs=3 if n < 10_000 else 1)
+            out.update({f"process_{n * n:.0e}_{label}_{k}": v for k, v in r.items()})
+    out.update({f"fixed_{k}": v for k, v in process.fixed_costs().items()})
+    out["hertz_mindlin_512_first_call_s"] = process.first_call_hertz_mindlin_512()
+    out.update(process.machine_limits())
+    return out
+
+
 # -- the run ----------------------------------------------------------------------------------
 
 def measure(cfg: Config, peers: bool = False) -> tuple[xr.Dataset, dict]:
@@ -381,6 +466,7 @@ def measure(cfg: Config, peers: bool = False) -> tuple[xr.Dataset, dict]:
     cases: dict = {}
     cases.update(_axisymmetric(cfg))
     cases.update(_pressure_ours(cfg))
+    cases.update(_interior(cfg))
     cases.update(_graded(cfg))
     cases.update(_wavy(cfg))
     tp: dict = {}
@@ -394,9 +480,12 @@ def measure(cfg: Config, peers: bool = False) -> tuple[xr.Dataset, dict]:
         tp.update(_pipeline_vs_hand(cfg.pipeline_n, min(cfg.repeats, 3)))
         tp.update(_quadrature_rate(cfg.repeats))
         tp.update(_hertz_mindlin_512(cfg.repeats))
+        tp.update(_tabulated_rates(cfg.repeats))
+        tp.update(_whole_process(cfg))
         if solve is not None:
             tp["peer_512_s"] = solve(512)[0] if 512 not in cfg.peer_grids else \
                 cases[HERTZ][(PEER, 512.0)][0] * 512 ** 2
+            tp["peer_512_first_s"] = tp["peer_512_s"]       # its solve in this process, imports done
     ds = _dataset(cases)
     ds.attrs["load_average_1min"] = f"{load_before:.2f} at start, {os.getloadavg()[0]:.2f} at end"
     ds.attrs.update({f"throughput_{k}": v for k, v in tp.items()})
@@ -543,6 +632,11 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
               f"Hertz–Mindlin partial-slip case through `generate(...).compute()` at rtol 1e-10: {hm:.2f} s on "
               f"the closed-form route, {tp['hertz_mindlin_512_quadrature_s']:.2f} s forced onto the integral "
               f"route (the principal stresses alone: {tp['principal_stresses_512_s']:.2f} s)."]
+    lines += [f"- Tabulated profiles (1000 samples) at rtol 1e-10: axisymmetric surface stresses "
+              f"{tp['tabulated_axisymmetric_points_per_cpu_s']:.3g} points per CPU second; graded pressure "
+              f"{tp['tabulated_graded_pressure_points_per_cpu_s']:.3g}, graded u_z "
+              f"{tp['tabulated_graded_uz_points_per_cpu_s']:.3g}."]
+    lines += _process_lines(tp)
     if "peer_512_s" in tp:
         peer = tp["peer_512_s"]
         lines[-1] += (f" ContactMechanics needs {peer:.1f} s to solve the pressure alone on 512 x 512 (this run): "
@@ -551,3 +645,35 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
     else:
         lines[-1] += " (Run with --peers and ContactMechanics installed for the peer's 512 x 512 time.)"
     return "\n".join(lines) + "\n"
+
+
+def _process_lines(tp: dict) -> list[str]:
+    """The whole-process section of the report: per size and field set, the medians and ratios."""
+    runs = sorted({k.split("_")[1] for k in tp if k.startswith("process_")}, key=float)
+    if not runs:
+        return []
+    lines = ["", "### Whole process against the hand loop", "",
+             "Fresh processes, back to back per pair (`stressfields run RECIPE -o FILE` against a hand-written "
+             "blocked NumPy loop over the same kernels and a plain netCDF4 write: benchmarks/process.py); cone under "
+             "partial slip on an n x n grid; medians of the pairs and median of the per-pair ratios.", "",
+             "| points | fields | stressfields wall [s] | CPU [s] | hand loop wall [s] | CPU [s] | ratio wall "
+             "| ratio CPU |",
+             "|---|---|---|---|---|---|---|---|"]
+    for size in runs:
+        for label in ("all", "von_mises"):
+            k = f"process_{size}_{label}_"
+            if k + "ratio_wall" in tp:
+                lines.append(f"| {float(size):.0e} | {'eleven' if label == 'all' else 'von Mises'} | "
+                             f"{tp[k + 'pipeline_s']:.2f} | {tp[k + 'pipeline_cpu_s']:.2f} | {tp[k + 'hand_s']:.2f} | "
+                             f"{tp[k + 'hand_cpu_s']:.2f} | {tp[k + 'ratio_wall']:.2f} | {tp[k + 'ratio_cpu']:.2f} |")
+    lines += ["", f"- Fixed costs (medians of 5 fresh processes): `stressfields describe conical` "
+                  f"{tp['fixed_describe_s']:.2f} s, `import stressfields` {tp['fixed_import_s']:.2f} s, a 1e4-point "
+                  f"`stressfields run` {tp['fixed_run_1e4_s']:.2f} s.",
+              f"- First call in a fresh process, every surface field of a 512 x 512 Hertz–Mindlin case (imports "
+              f"included): {tp['hertz_mindlin_512_first_call_s']:.2f} s."
+              + (f" ContactMechanics' 512 x 512 pressure solve in this run: {tp['peer_512_first_s']:.1f} s, "
+                 f"{tp['peer_512_first_s'] / tp['hertz_mindlin_512_first_call_s']:.0f}x longer."
+                 if "peer_512_first_s" in tp else ""),
+              f"- This machine: SHA-256 {tp['sha256_bytes_per_s'] / 1e9:.2f} GB/s, disk write (fsync'd) "
+              f"{tp['disk_bytes_per_s'] / 1e9:.2f} GB/s."]
+    return lines
