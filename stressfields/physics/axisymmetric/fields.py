@@ -29,6 +29,8 @@ import numpy as np
 from ..flags import validity_flag
 from ..invariants import principal_stresses, singular_limits, von_mises
 from . import history as hist
+from .displacement import NAMES as DISPLACEMENTS
+from .displacement import displacements, has_displacement_closed_form, tangential_displacements
 from .interior import interior_dpdz, interior_stress
 from .interior_tangential import interior_dpdz_tangential, interior_stress_tangential
 from .profiles import Profile
@@ -47,11 +49,11 @@ INVARIANTS = ("von_mises",) + PRINCIPAL + ("tau_max",)
 #: fields of a point (they need x and y, and z below the surface)
 SPATIAL = STRESS + INVARIANTS + ("dpdz", "region", "validity")
 #: everything ``fields`` computes
-FIELDS = SPATIAL + ("stick_radius",)
+FIELDS = SPATIAL + DISPLACEMENTS + ("stick_radius",)
 #: the loads of a history step (no x, y): stick radius, F_x / (mu F_N), energies / (mu F_N delta)
 HISTORY_LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle_energy")
 #: everything ``history_fields`` computes
-HISTORY_FIELDS = SPATIAL + HISTORY_LOADS
+HISTORY_FIELDS = SPATIAL + DISPLACEMENTS + HISTORY_LOADS
 #: the fields the validity flag looks at
 _VALUED = STRESS + INVARIANTS + ("dpdz",)
 
@@ -95,6 +97,15 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
     stick radius and the region flag keep c = a.
     """
     names = _known(names, FIELDS)
+    if any(n in DISPLACEMENTS for n in names):
+        rest = [n for n in names if n not in DISPLACEMENTS]
+        out, route = fields(rest, profile, x, y, z, a=a, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol,
+                            scale=scale, dpdz_scale=dpdz_scale)
+        _, c, mu_k = _stick(*(np.asarray(v, dtype=float) for v in (a, nu, mu, ux0)), profile)
+        out.update(displacements([n for n in names if n in DISPLACEMENTS], profile, x, y, 0.0 if z is None else z,
+                                 a=a, nu=nu, mu=mu, ux0=ux0, c=c, mu_kernel=mu_k, method=_dmethod(profile, method),
+                                 rtol=rtol))
+        return out, route
     spatial = [n for n in names if n in SPATIAL]
     if z is not None and spatial and np.any(np.asarray(z, dtype=float) > 0.0):
         return _with_depth(names, profile, x, y, z, a=a, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol,
@@ -118,6 +129,12 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
     if "validity" in names:
         out["validity"] = validity_flag(*(out[n] for n in out if n in _VALUED))
     return out, route
+
+
+def _dmethod(profile: Profile, method: str) -> str:
+    """The displacements' method: "closed" where they have no closed form (cone, power laws other
+    than n = 2, tabulated profiles, whose stresses may have one) takes their 1-D route."""
+    return "auto" if method == "closed" and not has_displacement_closed_form(profile) else method
 
 
 def _stick(a, nu, mu, ux0, profile):
@@ -220,6 +237,14 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, z=Non
     computation, bit for bit; "region" and the loads do not depend on z.
     """
     names = _known(names, HISTORY_FIELDS)
+    if any(n in DISPLACEMENTS for n in names):
+        rest = [n for n in names if n not in DISPLACEMENTS]
+        out, route = history_fields(rest, profile, x, y, z, a=a, nu=nu, mu=mu, amplitude=amplitude, history=history,
+                                    step=step, method=method, rtol=rtol, scale=scale, dpdz_scale=dpdz_scale)
+        out.update(_history_displacements([n for n in names if n in DISPLACEMENTS], profile, x, y, z, a=a, nu=nu,
+                                          mu=mu, amplitude=amplitude, history=history, step=step,
+                                          method=_dmethod(profile, method), rtol=rtol))
+        return out, route
     if z is not None and any(n in SPATIAL for n in names) and np.any(np.asarray(z, dtype=float) > 0.0):
         return _history_with_depth(names, profile, x, y, z, a=a, nu=nu, mu=mu, amplitude=amplitude,
                                    history=history, step=step, method=method, rtol=rtol, scale=scale,
@@ -321,6 +346,30 @@ def _history_with_depth(names, profile, x, y, z, *, a, nu, mu, amplitude, histor
         unresolved = deep & np.any([~np.isfinite(out[n]) for n in valued], axis=0) if valued else deep & False
         out["validity"] = np.where(unresolved, np.int8(UNRESOLVED), flag).astype(np.int8)
     return out, route
+
+
+def _history_displacements(names, profile, x, y, z, *, a, nu, mu, amplitude, history, step, method, rtol):
+    """Displacements / delta after step ``step`` of the history: the normal part plus the same
+    weighted sum (A69) of Cattaneo–Mindlin terms as the stresses (``_deep_terms``), on the surface
+    and below it (docs/theory/interior.md (I42)-(I43))."""
+    if profile.kind == "flat_punch":
+        raise ValueError("history_fields: the flat punch has no history route")
+    keys = ("x", "y", "z", "a", "nu", "mu", "amplitude")
+    arrays = dict(zip(keys, (np.asarray(0.0 if v is None else v, dtype=float)
+                             for v in (x, y, z, a, nu, mu, amplitude))))
+    arrays["step"] = np.asarray(step, dtype=np.int64)
+    shape = np.broadcast_shapes(*(v.shape for v in arrays.values()))
+    P = {k: np.broadcast_to(v, shape).ravel() for k, v in arrays.items()}
+    at = dict(a=P["a"], nu=P["nu"], method=method, rtol=rtol)
+    out = displacements(names, profile, P["x"], P["y"], P["z"], mu=0.0, ux0=0.0, c=P["a"], mu_kernel=0.0, **at)
+    out = {n: np.array(v, dtype=float) for n, v in out.items()}
+    sts = _memory(tuple(float(v) for v in np.asarray(history, dtype=float).ravel()))
+    for c, w, on in _deep_terms(P, profile, sts):
+        part = tangential_displacements(names, profile, P["x"][on], P["y"][on], P["z"][on], a=P["a"][on], c=c,
+                                        nu=P["nu"][on], mu_kernel=P["mu"][on], method=method, rtol=rtol)
+        for n in names:
+            out[n][on] += w * part[n]
+    return {n: v.reshape(shape) for n, v in out.items()}
 
 
 def _deep_terms(P: dict, profile: Profile, sts: list) -> list[tuple[np.ndarray, float, np.ndarray]]:
