@@ -3,8 +3,9 @@ profile under normal load (frictionless): the entry point ``interior_stress``.
 
 Routes (docs/theory/interior.md):
 
-* ``closed``: the paraboloid (Hertz; Huber 1904, Hamilton 1983; (I5)-(I9)) and the flat punch
-  (Sneddon 1946; the a-derivative of the Hertz field, (I10)-(I14)).  Accuracy: closed forms,
+* ``closed``: the paraboloid (Hertz; Huber 1904, Hamilton 1983; (I5)-(I9)), the flat punch
+  (Sneddon 1946; the a-derivative of the Hertz field, (I10)-(I14)) and the cone (Sneddon 1948;
+  the superposition (I15) integrated in closed form, (I46)-(I52), ``interior_cone``).  Accuracy: closed forms,
   relative error at most 1e-12 of |value| everywhere the value is finite, far field and next to
   edges included.
 * ``quadrature``: every profile (cone, paraboloid, power law, tabulated) as the one-dimensional
@@ -32,6 +33,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..quadrature import gauss_jacobi, gauss_legendre, group_by
+from .interior_cone import cone_dpdz_unit, cone_unit
 from .interior_hertz import COMPONENTS, _geometry, _one_minus_m_atan, hertz_unit, punch_unit
 from .profiles import Profile
 from .surface import surface_dpdz, surface_stress
@@ -86,9 +88,9 @@ def interior_stress(x, y, z, a, nu, profile: Profile, *, method: str = "auto",
     """Stress tensor / E* at (x, y, z), z >= 0 the depth, under a rigid axisymmetric ``profile``
     pressed to the contact radius ``a`` (normal load, no friction); docs/theory/interior.md.
 
-    ``method``: "auto" (closed form for the paraboloid, the power law n = 2 and the flat punch,
-    else the quadrature), "closed" (refused where no interior closed form exists: cone, power law
-    n != 2, tabulated) or "quadrature" (the 1-D superposition (I15), also for the paraboloid; the
+    ``method``: "auto" (closed form for the paraboloid, the cone, the power laws n = 1, 2 and the
+    flat punch, else the quadrature), "closed" (refused where no interior closed form exists: power
+    law n != 1, 2, tabulated) or "quadrature" (the 1-D superposition (I15), also for the paraboloid; the
     flat punch always uses its closed form).  x, y, z, a, nu broadcast; returns
     {"xx", "yy", "zz", "xy", "xz", "yz": ndarray}.
 
@@ -103,9 +105,26 @@ def interior_stress(x, y, z, a, nu, profile: Profile, *, method: str = "auto",
         out = {k: v * p0 for k, v in hertz_unit(x / a, y / a, z / a, nu).items()}
     elif family == "flat_punch":
         out = {k: v * (profile.depth_ / a) for k, v in punch_unit(x / a, y / a, z / a, nu).items()}
+    elif family == "cone":
+        out = _cone(x, y, z, a, nu, profile)
     else:
         out = _superposition(x, y, z, a, nu, profile, rtol)
     return {k: out[k].reshape(shape) for k in COMPONENTS}
+
+
+def _cone(x, y, z, a, nu, profile):
+    """(I46)-(I51) below the surface; at z = 0 the surface kernels' closed forms (their -inf at the tip)."""
+    out = {k: np.empty(x.size) for k in COMPONENTS}
+    surf = z == 0.0
+    if np.any(surf):
+        s = surface_stress(x[surf], y[surf], a[surf], a[surf], nu[surf], 0.0, profile, method="closed")
+        for k in COMPONENTS:
+            out[k][surf] = s[k]
+    i = np.flatnonzero(~surf)
+    k_cone = 0.5 * float(profile.closed[1])              # E* tan(theta)/2 per E*
+    for k, v in cone_unit(x[i] / a[i], y[i] / a[i], z[i] / a[i], nu[i]).items():
+        out[k][i] = k_cone * v
+    return out
 
 
 def _validate(z, a, nu, profile):
@@ -122,9 +141,9 @@ def _validate(z, a, nu, profile):
 
 
 def _closed_family(profile, method):
-    """"paraboloid", "flat_punch" or None (quadrature)."""
+    """"paraboloid", "cone", "flat_punch" or None (quadrature)."""
     closed = profile.closed
-    family = closed[0] if closed is not None and closed[0] in ("paraboloid", "flat_punch") else None
+    family = closed[0] if closed is not None and closed[0] in ("paraboloid", "cone", "flat_punch") else None
     if profile.kind == "flat_punch":
         return "flat_punch"              # g' is a Dirac delta: the kernel itself
     if method == "closed" and family is None:
@@ -150,38 +169,43 @@ def _superposition(x, y, z, a, nu, profile, rtol):
     return out
 
 
-def _superpose(x, y, z, a, nu, profile, rtol, kernel):
+def _superpose(x, y, z, a, nu, profile, rtol, kernel, lower=None):
     """(I15) at points z > 0 for ``kernel`` = (integrate, names): ``integrate(nodes, profile)`` ->
-    {name: array} sums the punch fields of a group of points over their nodes (``_Nodes``)."""
+    {name: array} sums the punch fields of a group of points over their nodes (``_Nodes``).
+    ``lower`` (optional, per point, 0 <= lower < a): integrate over [lower, a] instead of [0, a]
+    ((I45): the partial-slip difference over [c, a] directly, without the tip's large parts)."""
     n, q = interior_orders(rtol)
+    lower = np.zeros(x.size) if lower is None else np.broadcast_to(np.asarray(lower, dtype=float), x.shape)
     out: dict[str, np.ndarray] = {k: np.empty(x.size) for k in kernel[1]}
     for lo in range(0, x.size, _CHUNK):
         sl = slice(lo, lo + _CHUNK)
-        part = _superpose_chunk(x[sl], y[sl], z[sl], a[sl], nu[sl], profile, n, q, kernel)
+        part = _superpose_chunk(x[sl], y[sl], z[sl], a[sl], nu[sl], profile, n, q, kernel, lower[sl])
         for k, v in part.items():
             out[k][sl] = v
     return out
 
 
-def _breakpoints(r, z, a, profile, q):
-    """rho_s = min(r, a) and the panel ends per point as offsets from rho_s (rows, sorted, padded
-    with a - rho_s): b1 - rho_s (b1 the end of the first panel [0, b1]), geometric panels
-    +- h0 q^k about rho_s with h0 the layer width d = |(r, z) - (a, 0)| (z inside the contact;
-    h0 <= rho_s / 2 for a tip g' ~ rho^m0 with non-integer m0, whose scale is rho), 0, a - rho_s
-    and the knots of a tabulated profile (docs/theory/interior.md (I16)).  Offsets keep the
-    distance rho - r of the nodes next to the layer free of rounding."""
-    rho_s = np.minimum(r, a)
-    h0 = np.hypot(np.maximum(r - a, 0.0), z)
+def _breakpoints(r, z, a, profile, q, lower):
+    """rho_s = min(r, a) (clipped to [lower, a]) and the panel ends per point as offsets from
+    rho_s (rows, sorted, padded with a - rho_s): b1 - rho_s (b1 the end of the first panel
+    [0, b1]; b1 = lower where lower > 0, the first panel then carries no weight), geometric
+    panels +- h0 q^k about rho_s with h0 the layer width d = |(r, z) - (rho_s, 0)| (h0 <= rho_s / 2
+    for a tip g' ~ rho^m0 with non-integer m0, whose scale is rho), 0, a - rho_s and the knots of
+    a tabulated profile (docs/theory/interior.md (I16), (I45)).  Offsets keep the distance
+    rho - r of the nodes next to the layer free of rounding."""
+    rho_s = np.clip(r, lower, a)
+    h0 = np.hypot(r - rho_s, z)
     smooth_tip = profile.kind == "tabulated" or float(profile.tip_exponent).is_integer()
     if not smooth_tip:
         h0 = np.where(rho_s > 0.0, np.minimum(h0, 0.5 * rho_s), h0)
-    b1 = np.where(rho_s > 0.0, 0.5 * rho_s, np.minimum(h0, a))
+    cut = lower > 0.0
+    b1 = np.where(cut, lower, np.where(rho_s > 0.0, 0.5 * rho_s, np.minimum(h0, a)))
     knots = np.asarray(profile.r, dtype=float) if profile.kind == "tabulated" else np.zeros(0)
     knots = knots[knots > 0.0]
     if knots.size:
-        b1 = np.minimum(b1, knots[0])        # the first panel must not straddle a knot's cusp
+        b1 = np.where(cut, b1, np.minimum(b1, knots[0]))   # the first panel must not straddle a knot's cusp
     right = np.maximum(a - rho_s, 0.0)
-    left = 0.5 * rho_s
+    left = np.where(cut, rho_s - lower, 0.5 * rho_s)
     with np.errstate(divide="ignore"):
         kr = np.where(right > h0, np.ceil(np.log(right / h0) / math.log(q)), 0.0)
         kl = np.where(left > h0, np.ceil(np.log(left / h0) / math.log(q)), 0.0)
@@ -197,8 +221,10 @@ def _breakpoints(r, z, a, profile, q):
         ko = (kn - rho_s)[:, None]
         offsets = np.where(np.abs(offsets - ko) <= 1e-6 * np.abs(offsets), ko, offsets)
     offsets = np.column_stack([offsets] + [np.where(kn < a, kn - rho_s, right) for kn in knots])
-    offsets = np.where(offsets < b1[:, None] - rho_s[:, None], right[:, None], offsets)  # before b1: in panel 1
-    offsets = np.sort(offsets, axis=1)
+    start = (b1 - rho_s)[:, None]
+    offsets = np.where(offsets < start, right[:, None], offsets)  # before b1: in panel 1
+    # b1 again: a knot within 1e-6 of lower = b1 may have moved that end below it (then cut off)
+    offsets = np.sort(np.column_stack([start, offsets]), axis=1)
     if knots.size:
         offsets = _grade_after_knots(offsets, knots, rho_s, right)
     return rho_s, offsets
@@ -225,14 +251,14 @@ def _grade_after_knots(offsets, knots, rho_s, right):
     return np.sort(np.concatenate([offsets] + extra, axis=1), axis=1)
 
 
-def _superpose_chunk(x, y, z, a, nu, profile, n, q, kernel):
+def _superpose_chunk(x, y, z, a, nu, profile, n, q, kernel, lower):
     r = np.hypot(x, y)
-    rho_s, offsets = _breakpoints(r, z, a, profile, q)
+    rho_s, offsets = _breakpoints(r, z, a, profile, q, lower)
     out: dict[str, np.ndarray] = {}
     # rows with more panels need more nodes: evaluate points with equal panel counts together
     count = np.sum(np.diff(offsets, axis=1) > 0.0, axis=1)
     for _, idx in group_by(count):
-        rho, delta, weights = _rule(rho_s[idx], offsets[idx], profile, n)
+        rho, delta, weights = _rule(rho_s[idx], offsets[idx], profile, n, lower[idx] > 0.0)
         nodes = _Nodes(x[idx], y[idx], z[idx], nu[idx], rho_s[idx], r[idx] - rho_s[idx], rho_s[idx] + offsets[idx, 0],
                        a[idx], rho, delta, weights, n + 4)
         for k, v in kernel[0](nodes, profile).items():
@@ -259,11 +285,12 @@ class _Nodes(NamedTuple):
     first: int
 
 
-def _rule(rho_s, offsets, profile, n):
+def _rule(rho_s, offsets, profile, n, cut=False):
     """Nodes rho, their offsets delta = rho - rho_s and weights (rows): the first panel [0, b1] by
     Gauss–Jacobi with the tip weight rho^m0 (m0 > -1), the others by Gauss–Legendre (after
     t = w^2 on the panels of a tabulated profile that start at a knot, where g' has a one-sided
-    square-root cusp), (I17).  Zero-length panels are moved to the end of each row and cut off at the
+    square-root cusp), (I17); with ``cut`` (per row: the integral starts at lower = b1 > 0, (I45))
+    the first panel carries no weight.  Zero-length panels are moved to the end of each row and cut off at the
     longest row's count."""
     b1 = rho_s[:, None] + offsets[:, :1]
     m0 = float(profile.tip_exponent)
@@ -272,6 +299,7 @@ def _rule(rho_s, offsets, profile, n):
     first_w = b1 ** (1.0 + m0) * wj[None, :]
     if m0 != 0.0:
         first_w = first_w / np.where(first > 0.0, first, 1.0) ** m0
+    first_w = np.where(np.reshape(cut, (-1, 1)), 0.0, first_w)      # [0, lower] is not integrated
     lo, hi = offsets[:, :-1], offsets[:, 1:]
     empty = hi <= lo
     order = np.argsort(empty, axis=1, kind="stable")
@@ -321,11 +349,12 @@ def interior_dpdz(x, y, z, a, nu, profile: Profile, *, method: str = "auto", rto
     docs/theory/interior.md (I24)-(I28).
 
     Routes and accuracy as ``interior_stress``: closed forms (I26)-(I27) for the paraboloid (and
-    the power law n = 2) and the flat punch, relative error at most 1e-12 of |value| everywhere the
-    value is finite (where the value passes through zero: of the largest term of its sum); else the
-    1-D superposition (I28) of the punch derivative, |error| <= rtol * max(|value|, p_m/a).  On the
-    surface z = 0 the surface kernel (docs/theory/axisymmetric.md (A24)-(A27)), the limit z -> 0+,
-    with its +-inf at the contact edge and at a conical tip."""
+    the power law n = 2) and the flat punch, (I52) for the cone (and the power law n = 1), relative
+    error at most 1e-12 of |value| everywhere the value is finite (where the value passes through
+    zero: of the largest term of its sum); else the 1-D superposition (I28) of the punch
+    derivative, |error| <= rtol * max(|value|, p_m/a).  On the surface z = 0 the surface kernel
+    (docs/theory/axisymmetric.md (A24)-(A27)), the limit z -> 0+, with its +-inf at the contact
+    edge and at a conical tip."""
     shape, (x, y, z, a, nu) = flat_arguments("interior", method, x, y, z, a, nu)
     _validate(z, a, nu, profile)
     family = _closed_family(profile, method)
@@ -341,6 +370,8 @@ def interior_dpdz(x, y, z, a, nu, profile: Profile, *, method: str = "auto", rto
         out[i] = hertz_dpdz_unit(X / A, Y / A, Z / A, NU) * (2.0 / (math.pi * profile.closed[1]))
     elif family == "flat_punch":
         out[i] = punch_dpdz_unit(X / A, Y / A, Z / A, NU) * (profile.depth_ / (A * A))
+    elif family == "cone":
+        out[i] = cone_dpdz_unit(X / A, Y / A, Z / A, NU) * (0.5 * float(profile.closed[1]) / A)
     else:
         out[i] = _superpose(X, Y, Z, A, NU, profile, rtol, _DPDZ_KERNEL)["dpdz"]
     return out.reshape(shape)

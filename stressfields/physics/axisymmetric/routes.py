@@ -14,18 +14,20 @@ The one place that decides "a closed form exists" (docs/theory/axisymmetric.md (
 
 Below the surface (z > 0, normal load; docs/theory/interior.md) ``resolve_interior`` decides:
 
-* the paraboloid (and the power law n = 2) and the flat punch have closed forms (I5)-(I14),
-  (I24)-(I27); the flat punch always uses them;
-* every other profile (cone, power law n != 2, tabulated) is the one-dimensional superposition of
+* the paraboloid (and the power law n = 2), the cone (and the power law n = 1) and the flat punch
+  have closed forms (I5)-(I14), (I24)-(I27), (I46)-(I52); the flat punch always uses them;
+* every other profile (power law n != 1, 2, tabulated) is the one-dimensional superposition of
   flat-punch fields (I15)-(I17), (I28) by Gauss quadrature, as is the paraboloid under
   ``quadrature``; ``closed`` is refused where no interior closed form exists.
 
-Under tangential load (Cattaneo–Mindlin, ``tangential=True``) the tangential part takes the same
-kind of route: the closed forms (I23), (I33), (I34)-(I35) of the paraboloid and the flat punch, else
-the superposition of sliding punches (I33), (I28) with (I35); its accuracy is relative to mu p_m
-(the traction's scale), so the 1-D route states max(|value|, S max(1, mu)).  Power laws with
-n < 1 (a tip g' ~ rho^m0, m0 < 0) reach rtol = 1e-11 there, not 1e-12 (docs/theory/interior.md
-section 5): smaller rtol is refused.
+Under tangential load (Cattaneo–Mindlin, ``tangential=True``) the tangential part has the closed
+forms (I23), (I33), (I34)-(I35) of the paraboloid and the flat punch, else the superposition of
+sliding punches (I33), (I45), (I28) with (I35): for the cone ``auto`` is the closed form for the
+normal part and the superposition for the tangential part (``Route.kernel`` "auto"), and
+``closed`` is refused; its accuracy is relative to mu p_m
+(the traction's scale), so the 1-D route states max(|value|, S max(1, mu)).  The partial-slip
+superposition is one integral over [c, a] (I45), so every profile, power laws with n < 1 (a tip
+g' ~ rho^m0, m0 < 0) included, reaches the normal route's rtol = 1e-12 there.
 
 ``resolve_depth`` joins the two for a set of depths (z = 0 takes the surface route).
 
@@ -41,6 +43,7 @@ import numpy as np
 
 __all__ = ["METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
            "power_law_family", "has_closed_form", "has_interior_closed_form", "resolve", "resolve_interior",
+           "INTERIOR_TANGENTIAL_CLOSED_KINDS", "has_interior_tangential_closed_form",
            "TANGENTIAL_TIP_RTOL", "resolve_depth", "tangential_floor"]
 
 #: every method the family offers, the default first
@@ -55,17 +58,21 @@ _CLOSED = ("closed form", "relative error at most 1e-12 of |value| everywhere th
 _QUADRATURE = "one-dimensional Gauss quadrature of the MDR integrals"
 _SUPERPOSITION = ("1-D superposition of flat-punch fields below the surface (Gauss quadrature, "
                   "docs/theory/interior.md (I15)-(I17), (I28))")
-#: profile kinds with closed forms below the surface (a power law with n = 2 too)
-INTERIOR_CLOSED_KINDS: tuple[str, ...] = ("paraboloid", "flat_punch")
+#: profile kinds with closed forms below the surface under normal load (power laws n = 1, 2 too)
+INTERIOR_CLOSED_KINDS: tuple[str, ...] = ("paraboloid", "flat_punch", "cone")
+#: profile kinds whose tangential part below the surface has closed forms (a power law n = 2 too)
+INTERIOR_TANGENTIAL_CLOSED_KINDS: tuple[str, ...] = ("paraboloid", "flat_punch")
 #: the smallest rtol the superposition below the surface reaches (its rounding floor, about 1e-13)
 INTERIOR_RTOL = 1e-12
 #: the smallest rtol of the tangential superposition below the surface for a tip g' ~ rho^m0 with
-#: m0 < 0 (power laws n < 1): Sigma_T(a) - Sigma_T(c) loses eps |Sigma_T(a)|, measured 2e-11 mu p_m
-#: for n = 0.5 at z = 7.6e-10 a on the axis
-TANGENTIAL_TIP_RTOL = 1e-11
+#: m0 < 0 (power laws n < 1).  It was 1e-11 while partial slip was Sigma_T(a) - Sigma_T(c) (which
+#: lost eps |Sigma_T(a)|, 2e-11 mu p_m for n = 0.5 at z = 7.6e-10 a on the axis); the direct
+#: integral over [c, a] (I45) measured 3e-15 mu p_m there, so it is the normal route's floor
+TANGENTIAL_TIP_RTOL = INTERIOR_RTOL
 _CLOSED_TANGENTIAL = " (normal and tangential parts)"
+_CLOSED_NORMAL_ONLY = " (normal part)"
 _SUPERPOSITION_TANGENTIAL = ("; tangential part: 1-D superposition of sliding punches (Gauss quadrature, "
-                             "docs/theory/interior.md (I33), (I28) with (I35))")
+                             "docs/theory/interior.md (I33), (I45), (I28) with (I35))")
 
 
 class Route(NamedTuple):
@@ -77,8 +84,12 @@ class Route(NamedTuple):
 
     @property
     def kernel(self) -> str:
-        """The ``method`` argument of the kernels: "closed" or "quadrature"."""
-        head = self.route.split(";")[0].removesuffix(_CLOSED_TANGENTIAL)
+        """The ``method`` argument of the kernels: "closed", "quadrature", or "auto" where below the
+        surface the normal part has a closed form and the tangential part does not (the cone)."""
+        head = self.route.split(";")[0]
+        if head.endswith(_CLOSED_NORMAL_ONLY):
+            return "auto"
+        head = head.removesuffix(_CLOSED_TANGENTIAL)
         return "closed" if head in (_CLOSED[0], f"{_CLOSED[0]} below the surface") else "quadrature"
 
 
@@ -118,10 +129,20 @@ def _quadrature_accuracy(rtol: float, tangential: bool = False) -> str:
             "p_m/a for dpdz)")
 
 
-def has_interior_closed_form(kind: str, n=None) -> bool:
-    """Whether the field below the surface of a profile of this kind has closed forms
-    (docs/theory/interior.md (I5)-(I14), (I24)-(I27)): paraboloid, power law n = 2, flat punch."""
-    return kind in INTERIOR_CLOSED_KINDS or (kind == "power_law" and power_law_family(n) == "paraboloid")
+def has_interior_closed_form(kind: str, n=None, tangential: bool = False) -> bool:
+    """Whether the field below the surface of a profile of this kind has closed forms: under normal
+    load (docs/theory/interior.md (I5)-(I14), (I24)-(I27), (I46)-(I52)) the paraboloid, the cone,
+    the power laws n = 1 and 2 and the flat punch; with ``tangential`` (a Cattaneo–Mindlin load
+    acts too) only those whose tangential part has them as well
+    (``has_interior_tangential_closed_form``: not the cone)."""
+    normal = kind in INTERIOR_CLOSED_KINDS or (kind == "power_law" and power_law_family(n) is not None)
+    return normal and (not tangential or has_interior_tangential_closed_form(kind, n))
+
+
+def has_interior_tangential_closed_form(kind: str, n=None) -> bool:
+    """Whether the tangential (Cattaneo–Mindlin) part below the surface has closed forms
+    (docs/theory/interior.md (I23), (I33)-(I35)): paraboloid, power law n = 2, flat punch."""
+    return kind in INTERIOR_TANGENTIAL_CLOSED_KINDS or (kind == "power_law" and power_law_family(n) == "paraboloid")
 
 
 def resolve_interior(profile, method: str, rtol: float, n=None, tangential: bool = False) -> Route:
@@ -136,20 +157,28 @@ def resolve_interior(profile, method: str, rtol: float, n=None, tangential: bool
     if method == "closed" and not closed:
         raise ValueError(f"method 'closed' has no closed form below the surface for profile {profile!r}; "
                          "use 'auto' or 'quadrature'")
-    if profile == "flat_punch" or (closed and method != "quadrature"):
+    both = closed and (not tangential or has_interior_tangential_closed_form(profile, n))
+    if method == "closed" and not both:
+        raise ValueError(f"method 'closed' has no closed form below the surface under tangential load for "
+                         f"profile {profile!r} (its normal part has one); use 'auto' or 'quadrature'")
+    if profile == "flat_punch" or (both and method != "quadrature"):
         return Route(f"{_CLOSED[0]} below the surface" + (_CLOSED_TANGENTIAL if tangential else ""), _CLOSED[1])
     if not tangential:
         return Route(_SUPERPOSITION, _quadrature_accuracy(rtol))
     floor = tangential_floor(profile, n)
     if rtol < floor:
         raise ValueError(f"rtol = {rtol:g} is below {floor:g}, the smallest the tangential superposition below "
-                         f"the surface reaches for a power law with n < 1; use rtol >= {floor:g}")
+                         f"the surface reaches; use rtol >= {floor:g}")
+    if closed and method == "auto":
+        return Route(f"{_CLOSED[0]} below the surface{_CLOSED_NORMAL_ONLY}{_SUPERPOSITION_TANGENTIAL}",
+                     _quadrature_accuracy(rtol, tangential=True))
     return Route(_SUPERPOSITION + _SUPERPOSITION_TANGENTIAL, _quadrature_accuracy(rtol, tangential=True))
 
 
 def tangential_floor(kind: str, n=None) -> float:
     """The smallest rtol of the tangential superposition below the surface: ``TANGENTIAL_TIP_RTOL``
-    for a power law with n < 1 (its g' ~ rho^(n-1) tip), else ``INTERIOR_RTOL``."""
+    for a power law with n < 1 (its g' ~ rho^(n-1) tip), else ``INTERIOR_RTOL``; both 1e-12 since
+    partial slip is integrated over [c, a] directly (docs/theory/interior.md (I45))."""
     tip = kind == "power_law" and n is not None and np.ndim(n) == 0 and float(n) < 1.0
     return TANGENTIAL_TIP_RTOL if tip else INTERIOR_RTOL
 
