@@ -18,12 +18,15 @@ A recipe::
     [points]              # optional: columns of equal length that vary together along `point`
     x = [0.1, 0.5, 2.0]
     z = [0.2, 0.0, 0.5]
+    # or, as the one key of [points]: file = "nodes.csv" (.csv, .npy, .npz, .nc; relative to the
+    # recipe's directory), or sample = { n = 1000, method = "sobol", seed = 1, mu = [0.0, 1.0] }
 
 Every error names the key, the value and what is allowed; all errors are reported at once.
 Bounds are checked before any work: the file (a regular file of at most MAX_RECIPE_BYTES, UTF-8,
 keys of at most MAX_KEY_PARTS dotted parts, at most MAX_NESTING nested arrays/tables), each sweep
 (at most MAX_SWEEP values) and their product (at most MAX_POINTS) from the sweep specifications
-and the length of the [points] columns,
+and the length of the [points] columns (a points file: at most pointfiles.MAX_POINTS_FILE_BYTES,
+checked before it is read; a sample: its n, before it is drawn),
 ARRAY parameters (their declared size limit), and the chunk count of output.chunks.
 """
 from __future__ import annotations
@@ -34,15 +37,17 @@ import json
 import math
 import os
 import re
-import reprlib
 import stat
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Collection, Mapping
 
 import numpy as np
 
+from .errors import show
+from .pointfiles import MAX_SWEEP, file_label, read_points_file
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
 from .writers import output_option_problems
@@ -64,22 +69,14 @@ MAX_RECIPE_BYTES = 1_000_000
 #: (RecursionError near 1 000 levels): both are bounded before parsing
 MAX_KEY_PARTS = 16
 MAX_NESTING = 32
-#: values of one sweep: its coordinate takes 80 MB and is expanded and checked in ~0.2 s
-MAX_SWEEP = 10_000_000
 #: points of the whole sweep (the product): 1e4 chunks of the default 1e6 points
 MAX_POINTS = 10_000_000_000
 #: dask chunks of one variable group: each costs ~10 ms of scheduling whatever its size
 #: (2e5 points: 0.4 s in one chunk, 6.9 s in 1 000, 104 s and 1.1 GB in 10 000)
 MAX_CHUNKS = 10_000
-
-_SHOW = reprlib.Repr()
-_SHOW.maxlevel, _SHOW.maxlist, _SHOW.maxdict, _SHOW.maxstring, _SHOW.maxother = 3, 8, 6, 60, 40
-
-
-def show(value) -> str:
-    """repr for messages, shortened: a recipe value may be a 1 MB list or nested 30 deep."""
-    return _SHOW.repr(value)
-
+SAMPLE_METHODS = ("sobol", "lhs", "uniform")
+#: the keys of points.sample that are not parameter ranges
+SAMPLE_KEYS = ("n", "method", "seed")
 
 class RecipeError(ValueError):
     """An invalid recipe; ``problems`` lists every message."""
@@ -150,7 +147,7 @@ def load(source: str | Path | Mapping) -> Recipe:
             raise RecipeError([f"not valid TOML: {exc}"], label) from None
         except RecursionError:          # _check_shape bounds nesting; kept as a last guard
             raise RecipeError([f"not valid: nested deeper than {MAX_NESTING} levels"], label) from None
-    return _validate(data, text, label)
+    return _validate(data, text, label, None if isinstance(source, Mapping) else path.parent)
 
 
 def _read_text(path: Path, label: str) -> str:
@@ -208,7 +205,9 @@ def _check_shape(text: str, label: str) -> None:
         raise RecipeError(problems, label)
 
 
-def _validate(data: dict, text: str | None, label: str) -> Recipe:
+def _validate(data: dict, text: str | None, label: str, base: Path | None = None) -> Recipe:
+    """The checked recipe; ``base`` is the directory a relative points.file is found in (None: the
+    working directory, for a recipe given as a dict)."""
     problems: list[str] = []
     for key in data:
         if key not in TOP_KEYS:
@@ -235,13 +234,18 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     physical = scen.physical_switch is None or scen.physical_switch in params
     mode = "physical" if physical else "normalised"
     values: dict[str, Any] = {}
-    points_raw = _points_table(data, problems)
-    n_points = _points_size(points_raw, problems)          # from the lengths, before any parsing
+    points_raw, source = _points_table(data, declared, params, scen, base, problems)
+    # from the lengths (or the sample's n), before any parsing or drawing
+    n_points = source["sample"]["n"] if "sample" in source else _points_size(points_raw, _said(problems, source))
     rejected = _sweep_sizes(params, declared, problems, n_points)   # before any sweep is expanded
+    if "sample" in source and POINT not in rejected:
+        points_raw = draw_sample(source["sample"])
     columns = {} if n_points is None or POINT in rejected else _parse_points(
-        points_raw, declared, params, scen, problems)
+        points_raw, declared, params, scen, _said(problems, source))
     # a refused column is already reported: not "missing" as well
     rejected |= {k for k in points_raw if k not in columns and k not in params}
+    if "points" in data and not columns:    # a refused file or sample: its columns are not "missing" too
+        rejected |= {k for k, par in declared.items() if _is_column(par) and k not in params}
     for key, raw in params.items():
         if key in rejected:
             continue
@@ -283,13 +287,14 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     if scen.complete and not problems:
         scen.complete(values)
     if scen.check and not problems:
-        problems += scen.check(values, physical, method_t.get("method", "auto"))
+        marked = CheckValues(values, tuple(k for k in columns if k in values))
+        problems += scen.check(marked, physical, method_t.get("method", "auto"))
 
     swept = tuple(p.name for p in scen.parameters
                   if isinstance(values.get(p.name), np.ndarray) and p.name not in columns)
     points = tuple(p.name for p in scen.parameters if p.name in columns and p.name in values)
     dims = swept + ((POINT,) if points else ())
-    variables = _variables(scen, output.get("variables"), physical, problems)
+    variables = _variables(scen, output.get("variables"), physical, problems, values)
     chunks = _chunks(output.get("chunks", {}), dims, problems)
     storage = {k: output[k] for k in ("dtype", "compression", "nonfinite") if k in output}
     problems += [f"output.{p}" for p in output_option_problems(**storage)]
@@ -315,11 +320,23 @@ def _validate(data: dict, text: str | None, label: str) -> Recipe:
     }
     if storage:                     # only when given: recipes without them keep their hash
         canonical_dict["output"].update(sorted(storage.items()))
-    if points:                      # likewise
-        canonical_dict["points"] = {k: _jsonable(values[k]) for k in sorted(points)}
+    if points:                      # likewise; with the file (name, SHA-256) or the sample's spec
+        canonical_dict["points"] = {"columns": sorted(points), "n": len(values[points[0]]),
+                                    "sha256": points_digest({k: values[k] for k in points}), **source}
     canonical = json.dumps(canonical_dict, sort_keys=True, separators=(",", ":"))
     return Recipe(scen, values, swept, physical, variables, chunks, method, rtol, title,
                   text if text is not None else canonical, canonical, dict(plot), storage, points)
+
+
+def points_digest(columns: Mapping[str, np.ndarray]) -> str:
+    """SHA-256 of the [points] columns (each name, then its values little-endian, names in sorted
+    order): what the canonical recipe records of them.  Not the values themselves: 1e7 points would
+    make an attribute of hundreds of MB; the file holds them as coordinates along `point`."""
+    h = hashlib.sha256()
+    for name in sorted(columns):
+        values = np.asarray(columns[name])
+        h.update(name.encode() + b"\0" + values.astype(values.dtype.newbyteorder("<"), copy=False).tobytes())
+    return h.hexdigest()
 
 
 def _hint(scen: Scenario, key) -> str:
@@ -368,16 +385,196 @@ def _sweep_sizes(params: dict, declared: dict, problems: list[str], n_points: in
     return refused
 
 
-def _points_table(data: dict, problems: list[str]) -> dict:
-    """The [points] table (a dict of columns in the Python API), or {} if not given."""
-    table = data.get("points", {})
+class CheckValues(dict):
+    """The values a scenario's ``check`` receives: the recipe's values, and ``points``, the names
+    that are [points] columns: 1-D arrays that vary together (one value per point, compared
+    element-wise), where a swept array is an axis of its own (every combination is computed)."""
+
+    def __init__(self, values: Mapping, points: tuple[str, ...] = ()):
+        super().__init__(values)
+        self.points = tuple(points)
+
+
+def _points_table(data: dict, declared: dict, params: dict, scen: Scenario, base: Path | None,
+                  problems: list[str]) -> tuple[dict, dict]:
+    """The [points] columns as given ({} if none) and their source for the canonical recipe: {} for
+    inline columns, {"file", "file_sha256"} for a file, {"sample": spec} for a sample (drawn later,
+    once its size has passed the bounds; the columns are then {})."""
+    if "points" not in data:
+        return {}, {}
+    table = data["points"]
+    if hasattr(table, "data_vars"):             # an xarray.Dataset (itself a Mapping)
+        return _dataset_columns(table, declared, problems), {}
+    if hasattr(table, "columns") and hasattr(table, "to_numpy"):   # a pandas.DataFrame, not imported
+        return _frame_columns(table, problems), {}
     if not isinstance(table, Mapping):
         problems.append(f"'points' must be a table of columns like {{ x = [0.1, 0.5], z = [0.2, 0.0] }}, "
                         f"got {show(table)}")
-        return {}
-    if "points" in data and not table:
+        return {}, {}
+    if not table:
         problems.append("[points] has no column; give at least one, e.g. x = [0.1, 0.5]")
-    return dict(table)
+        return {}, {}
+    for key in ("file", "sample"):
+        if key in table:
+            others = [k for k in table if k != key]
+            if others:      # one source per table: a file's or a sample's rows cannot be told apart
+                problems.append(f"points.{key}: [points] takes one source of points, inline columns, a file or a "
+                                f"sample; it also has {', '.join(map(show, others))}: put every column in one of them")
+                return {}, {}
+            if key == "file":
+                return read_points_file(table["file"], base, problems)
+            spec = _sample_spec(table["sample"], declared, params, scen, problems)
+            return {}, ({"sample": spec} if spec else {})
+    return dict(table), {}
+
+
+class _Named:
+    """A problems list whose messages are prefixed by the points file the columns came from."""
+
+    def __init__(self, problems: list[str], prefix: str):
+        self.problems, self.prefix = problems, prefix
+
+    def append(self, message: str) -> None:
+        self.problems.append(self.prefix + message)
+
+
+def _said(problems: list[str], source: dict):
+    return _Named(problems, f"points.file = {file_label(source['file'])}: ") if "file" in source else problems
+
+
+def _frame_columns(frame, problems: list[str]) -> dict:
+    """A DataFrame's columns (duck-typed: pandas is not a dependency); its index is not a column."""
+    names = list(frame.columns)
+    bad = [c for c in names if not isinstance(c, str)]
+    twice = [c for c in names if names.count(c) > 1]
+    if bad or twice:
+        problems.append(f"points: a DataFrame of points needs one column per parameter, named by a string; got "
+                        f"{show(bad[0]) + ' (not a string)' if bad else show(twice[0]) + ' twice'}")
+        return {}
+    if not names:
+        problems.append("[points] has no column; the DataFrame has none")
+    return {c: np.asarray(frame[c].to_numpy()) for c in names}
+
+
+def _dataset_columns(ds, declared: dict, problems: list[str]) -> dict:
+    """A Dataset's data variables and coordinates along its one dimension (its index coordinate only
+    if it names a parameter: otherwise it merely numbers the points)."""
+    if len(ds.sizes) != 1:
+        problems.append(f"points: a Dataset of points has one dimension (one entry per point); this one has "
+                        f"{show(dict(ds.sizes))}")
+        return {}
+    dim = next(iter(ds.sizes))
+    out = {}
+    for name, var in {**ds.coords, **ds.data_vars}.items():
+        if var.ndim == 0 and name in ds.coords:
+            continue                            # a scalar coordinate (left by .sel) locates nothing per point
+        if name == dim and name not in declared:
+            continue
+        out[str(name)] = np.asarray(var.values) if var.ndim == 1 else var.values
+    if not out:
+        problems.append(f"[points] has no column; the Dataset has no variable along {show(dim)}")
+    return out
+
+
+
+
+# -- points.sample -------------------------------------------------------------------------------
+
+def _sample_spec(raw, declared: dict, params: dict, scen: Scenario, problems: list[str]) -> dict | None:
+    """The checked sample specification {method, n, seed, ranges}, or None (problems said).
+
+    A key of the table is n, method or seed, or a parameter with its [low, high] range (a list: so the
+    graded profile exponent `n` is a range when given as one, the count when an integer)."""
+    example = '{ n = 1000, method = "sobol", seed = 1, mu = [0.0, 1.0] }'
+    if not isinstance(raw, Mapping):
+        problems.append(f"points.sample = {show(raw)} must be a table like {example}")
+        return None
+    before = len(problems)
+    n = raw.get("n")
+    if isinstance(n, list):
+        n = None
+    if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_SWEEP:
+        problems.append(f"points.sample.n = {show(n)} must be an integer in [1, {MAX_SWEEP:,}] (the number of "
+                        "points)")
+    method = raw.get("method", "sobol")
+    if method not in SAMPLE_METHODS:
+        problems.append(f"points.sample.method = {show(method)} must be one of "
+                        f"{', '.join(map(repr, SAMPLE_METHODS))}")
+    seed = raw.get("seed")
+    if "seed" not in raw:
+        problems.append("points.sample.seed is missing: give an integer >= 0; the seed makes the sample "
+                        "reproducible (the same recipe, the same points)")
+    elif isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        problems.append(f"points.sample.seed = {show(seed)} must be an integer >= 0")
+    ranges = {}
+    columns = [p for p in declared if _is_column(declared[p]) and declared[p].kind != "int"]
+    for key, value in raw.items():
+        if key in SAMPLE_KEYS and not isinstance(value, list):
+            continue
+        if key not in declared:
+            problems.append(f"points.sample: unknown parameter {show(key)} for scenario '{scen.name}'"
+                            f"{_hint(scen, key)}; give n, method, seed and [low, high] ranges of: {', '.join(columns)}")
+        elif key in params:
+            problems.append(f"points.sample.{key}: '{key}' is also given in [parameters]; give it in one place")
+        elif key not in columns:
+            par = declared[key]
+            what = ("a choice" if par.choices else "an array" if par.kind == ARRAY else "an integer"
+                    if par.kind == "int" else "a single-value")
+            problems.append(f"points.sample.{key}: '{key}' cannot be sampled ({what} parameter); give it in "
+                            "[parameters]")
+        elif (bounds := _sample_range(declared[key], value, problems)) is not None:
+            ranges[key] = bounds
+    if len(problems) == before and not ranges:
+        problems.append(f"points.sample names no parameter range; give [low, high] of one or more of: "
+                        f"{', '.join(columns)}")
+    if len(problems) > before:
+        return None
+    return {"method": method, "n": n, "seed": seed, "ranges": dict(sorted(ranges.items()))}
+
+
+def _sample_range(par: Parameter, value, problems: list[str]) -> list[float] | None:
+    key = par.name
+    if not (isinstance(value, list) and len(value) == 2 and all(
+            isinstance(v, (int, float)) and not isinstance(v, bool) for v in value) and value[0] <= value[1]):
+        problems.append(f"points.sample.{key} = {show(value)} must be [low, high], two numbers, low <= high")
+        return None
+    for v in value:         # both ends within the parameter's range: every point drawn is then valid
+        why = par.check(v)
+        if why:
+            problems.append(f"points.sample.{key} = {show(value)}: {show(v)} {why}")
+            return None
+    return [float(v) for v in value]
+
+
+def draw_sample(spec: dict) -> dict[str, np.ndarray]:
+    """The columns of a checked sample specification: bit-identical for the same spec (and NumPy/SciPy).
+
+    Dimensions in alphabetical order of the parameters (the order of the canonical spec), so that
+    the order of the keys in the recipe does not change the points.
+    """
+    names, n, seed = list(spec["ranges"]), spec["n"], spec["seed"]
+    rng = np.random.default_rng(seed)
+    if spec["method"] == "uniform":
+        unit = rng.random((n, len(names)))
+    else:
+        from scipy.stats import qmc            # scipy.stats takes ~0.3 s to import: only for a sample
+
+        # seed=: the keyword every supported SciPy (>= 1.11) takes; 1.15 added rng= as its new name
+
+        if spec["method"] == "lhs":
+            unit = qmc.LatinHypercube(len(names), seed=rng).random(n)
+        else:
+            # random(n) is the first n points of random_base2(ceil(log2 n)) (tested), without
+            # drawing up to twice as many: scipy's warning that n is not a power of 2 (balance
+            # properties) is silenced, not the sequence changed
+            with warnings.catch_warnings():
+                warnings.filterwarnings("ignore", message=".*balance properties.*", category=UserWarning)
+                unit = qmc.Sobol(len(names), scramble=True, seed=rng).random(n)
+    low = np.array([spec["ranges"][k][0] for k in names])
+    high = np.array([spec["ranges"][k][1] for k in names])
+    # low + u (high - low) may round one ulp beyond high: clipped, so that every point is in the box
+    values = np.clip(low + unit * (high - low), low, high)
+    return {k: np.ascontiguousarray(values[:, i]) for i, k in enumerate(names)}
 
 
 def _points_size(table: dict, problems: list[str]) -> int | None:
@@ -582,18 +779,23 @@ def _expand_sweep(key: str, raw, problems: list[str]):
     return np.linspace(start, stop, num)
 
 
-def _variables(scen: Scenario, requested, physical: bool, problems: list[str]) -> tuple[str, ...]:
-    # every variable of the mode may be requested; the always-on ones (flags) also join by themselves,
-    # so the default list leaves them out (and recipes without output.variables keep their hash)
-    available = [v.name for v in scen.variables_in(physical)]
+def _variables(scen: Scenario, requested, physical: bool, problems: list[str],
+               given: Collection[str] = ()) -> tuple[str, ...]:
+    # every variable of the mode may be requested, except one named like a parameter of the recipe
+    # (``given``: its value is a coordinate); the always-on ones (flags) also join by themselves, so
+    # the default list leaves them out (and recipes without output.variables keep their hash)
+    available = [v.name for v in scen.available(physical, given)]
     if requested is None:
-        return tuple(scen.default_variables or [v.name for v in scen.variables_in(physical) if not v.always])
+        return scen.defaults(physical, given)
     if not isinstance(requested, list) or not requested or not all(isinstance(v, str) for v in requested):
         problems.append(f"output.variables = {show(requested)} must be a non-empty list of names; "
                         f"available: {', '.join(available)}")
         return ()
     for v in requested:
-        if v not in available:
+        if v in given and v in [w.name for w in scen.variables]:
+            problems.append(f"output.variables: {show(v)} is a parameter of this recipe (a coordinate of the "
+                            f"dataset), not computed; available: {', '.join(available)}")
+        elif v not in available:
             problems.append(f"output.variables: unknown variable {show(v)} for scenario '{scen.name}'"
                             f"{' in this mode' if v in [w.name for w in scen.variables] else ''}; "
                             f"available: {', '.join(available)}")
@@ -639,14 +841,16 @@ def _plot(scen: Scenario, plot: dict, swept: tuple[str, ...], variables: tuple[s
     shown = list(variables) + [v.name for v in scen.variables_in(physical) if v.always]
     dims = {n: tuple(d for d in swept if scen.variable(n).dims is None or d in scen.variable(n).dims)
             for n in shown}
-    kind = plot.get("kind", "map" if {"x", "y"} <= set(swept) else "line")
+    kind = plot_kind(plot, swept)
     if kind not in PLOT_KINDS:
         return [f"plot.kind = {show(kind)} must be one of {', '.join(map(repr, PLOT_KINDS))}"]
-    if kind == "map" and not {"x", "y"} <= set(swept):
-        problems.append(f"plot.kind = 'map' needs x and y swept; swept: {', '.join(swept)}")
+    plane = map_plane(swept)
+    if kind == "map" and plane is None:
+        problems.append(f"plot.kind = 'map' needs x and y swept (or x and z); swept: {', '.join(swept)}")
     x = plot.get("x", "x" if kind == "map" else swept[-1])
     if kind == "map" and x != "x":
-        problems.append(f"plot.x = {show(x)}: a map is drawn over x and y; leave plot.x out")
+        problems.append(f"plot.x = {show(x)}: a map is drawn over x and {plane[1] if plane else 'y'}; "
+                        "leave plot.x out")
     elif not isinstance(x, str) or (x not in swept and not dims.get(x)):
         problems.append(f"plot.x = {show(x)} must name a swept parameter ({', '.join(swept)}) or a variable "
                         f"of the output that depends on one ({', '.join(n for n in shown if dims[n])})")
@@ -659,7 +863,7 @@ def _plot(scen: Scenario, plot: dict, swept: tuple[str, ...], variables: tuple[s
     if hue is not None and (kind == "map" or not isinstance(hue, str) or hue not in swept or hue in (x, along)):
         problems.append(f"plot.hue = {show(hue)} must name a swept parameter other than the horizontal axis "
                         f"({', '.join(d for d in swept if d not in (x, along)) or 'none'}), in a line plot")
-    need = {"x", "y"} if kind == "map" else {along}
+    need = set(plane) if kind == "map" else {along}
     need_text = " and ".join(sorted(need))
     names = plot.get("variables")
     if names is not None and not (isinstance(names, list) and names and all(isinstance(n, str) for n in names)):
@@ -682,6 +886,25 @@ def _plot(scen: Scenario, plot: dict, swept: tuple[str, ...], variables: tuple[s
     if marker is not None and marker not in PLOT_MARKERS:
         problems.append(f"plot.marker = {show(marker)} must be one of {' '.join(PLOT_MARKERS)}")
     return problems
+
+
+def map_plane(swept) -> tuple[str, str] | None:
+    """The plane of a map: x-y where both are swept, else the section x-z below the surface."""
+    for plane in (("x", "y"), ("x", "z")):
+        if set(plane) <= set(swept):
+            return plane
+    return None
+
+
+def plot_kind(spec: dict, swept) -> str:
+    """plot.kind, else "map" over x and y, or over x and z unless the table asks for a line (an x or
+    a hue), else "line"."""
+    if "kind" in spec:
+        return spec["kind"]
+    plane = map_plane(swept)
+    if plane == ("x", "y") or (plane == ("x", "z") and not {"x", "hue"} & set(spec)):
+        return "map"
+    return "line"
 
 
 def plot_along(x: str, hue, swept: tuple[str, ...], dims: dict) -> str | None:

@@ -3,6 +3,7 @@
 Values at a point equal the grid's at the same coordinates bit for bit (the scenario receives the
 columns as arrays along the block's last axis), and agree with an independent closed form.
 """
+import hashlib
 import json
 from pathlib import Path
 
@@ -102,7 +103,11 @@ def test_canonical_form_keeps_the_hash_of_recipes_without_points():
     assert "points" not in json.loads(plain.canonical) and plain.points == ()
     r = load({**CONE, "points": {"x": [0.5, 0.5], "y": [0.0, 0.1]}})
     canon = json.loads(r.canonical)
-    assert canon["points"] == {"x": [0.5, 0.5], "y": [0.0, 0.1]} and "x" not in canon["parameters"]
+    # the columns by their digest (the file holds the values as coordinates): names, count, SHA-256
+    # of each name and its little-endian float64 values, in sorted order
+    digest = hashlib.sha256(b"x\0" + np.array([0.5, 0.5], "<f8").tobytes()
+                            + b"y\0" + np.array([0.0, 0.1], "<f8").tobytes()).hexdigest()
+    assert canon["points"] == {"columns": ["x", "y"], "n": 2, "sha256": digest} and "x" not in canon["parameters"]
 
 
 @pytest.mark.parametrize("points, words", [
@@ -184,3 +189,51 @@ def test_cf_compliance(tmp_path, params, feature):
         assert ds.attrs.get("featureType") == feature
         # CF auxiliary coordinates: each field names the columns it is located by
         assert {"x", "y"} <= set(ds.sigma_xx.attrs["coordinates"].split())
+
+
+def test_graded_tangential_columns_pair_the_material_point_by_point():
+    """(k, nu) on the Holl ratio nu = 1/(2+k), as [points] columns, decouple at every point and are
+    accepted, though the grid of the same columns (k crossed with every nu) would not decouple.
+    The stick radius is held against the MDR line-load integral (Hess & Popov 2016, eq. 43) by scipy."""
+    from scipy import integrate
+
+    def fx_of(s, k):        # F_x/(mu F_N) at stick radius c = s a, paraboloid, independent of eq. (51)
+        u = lambda x: 1 - x * x
+        slip = integrate.quad(lambda x: x ** k * u(x), s, 1, epsabs=0, epsrel=1e-13)[0]
+        whole = integrate.quad(lambda x: x ** k * u(x), 0, 1, epsabs=0, epsrel=1e-13)[0]
+        return (u(s) * s ** (1 + k) / (1 + k) + slip) / whole
+
+    k = np.array([0.0, 0.2, 0.5, 0.9])
+    nu = 1.0 / (2.0 + k)
+    s = np.array([0.3, 0.8, 0.5, 0.65])
+    fx = np.array([fx_of(si, ki) for si, ki in zip(s, k)])
+    base = {"scenario": "graded_tangential",
+            "parameters": {"body2": "rigid", "E0": 1e9, "R": 0.05, "contact_radius": 1e-3}}
+    ds = sf.generate({**base, "points": {"k": k, "nu": nu, "fx": fx}}).compute()
+    assert ds.coupling.dims == ("point",) and (ds.coupling.values == 0).all() and (ds.validity.values == 0).all()
+    np.testing.assert_allclose(ds.stick_radius.values, s, rtol=1e-9)
+    for i in range(k.size):         # each point: the run at its own k with nu = 1/(2+k) set by the scenario
+        one = sf.generate({**base, "parameters": {**base["parameters"], "k": k[i], "fx": fx[i],
+                                                  "poisson": "holl_ratio"}}).compute()
+        for name in ("stick_radius", "tangential_displacement", "normal_force", "shear_traction"):
+            np.testing.assert_allclose(ds[name].values[i], one[name].values, rtol=1e-15, err_msg=name)
+    grid = problems({**base, "parameters": {**base["parameters"], "k": k.tolist(), "nu": sorted(nu.tolist())}})
+    assert "do not decouple" in grid
+    msg = problems({**base, "points": {"k": k, "nu": nu[::-1]}})
+    assert "do not decouple" in msg and "at point 0" in msg
+
+
+def test_graded_tangential_sweep_beside_material_columns():
+    """A swept E0 (its own axis) beside (k, nu, nu_2) columns (one shared axis): every combination of
+    E0 with each point decouples; a column off the Holl ratio is named by its point."""
+    k = np.array([0.1, 0.4, 0.7])
+    holl = 1.0 / (2.0 + k)
+    base = {"scenario": "graded_tangential",
+            "parameters": {"body2": "elastic", "E0": [1e9, 3e9], "E0_2": 2e9, "R": 0.05, "contact_radius": 1e-3,
+                           "fx": 0.5}}
+    ds = sf.generate({**base, "points": {"k": k, "nu": holl, "nu_2": holl}}).compute()
+    assert ds.coupling.dims == ("E0", "point") and (ds.coupling.values == 0).all()
+    off = holl.copy()
+    off[2] = 0.3
+    msg = problems({**base, "points": {"k": k, "nu": holl, "nu_2": off}})
+    assert "do not decouple" in msg and "at point 2" in msg and "nu_2 = 0.3" in msg

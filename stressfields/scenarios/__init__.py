@@ -1,6 +1,9 @@
 """The scenario registry: the one place that lists the scenarios."""
 from __future__ import annotations
 
+import sys
+import types
+
 from .axisymmetric import AXISYMMETRIC, CONICAL, PARABOLIC
 from .base import Scenario
 from .graded import SCENARIOS as GRADED
@@ -8,3 +11,16 @@ from .history import SCENARIOS as HISTORY
 from .wavy import SCENARIOS as WAVY
 
 REGISTRY: dict[str, Scenario] = {s.name: s for s in (CONICAL, PARABOLIC, AXISYMMETRIC, *HISTORY, *GRADED, *WAVY)}
+
+
+class _Package(types.ModuleType):
+    """Importing this subpackage sets the attribute `stressfields.scenarios` to it, over the API
+    function `sf.scenarios()` of the same name: calling the subpackage is calling that function."""
+
+    def __call__(self) -> dict[str, str]:
+        from ..api import scenarios
+
+        return scenarios()
+
+
+sys.modules[__name__].__class__ = _Package

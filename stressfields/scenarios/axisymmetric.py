@@ -5,8 +5,11 @@ below it (depth z > 0).
 Scenarios `conical`, `parabolic` and `axisymmetric` (power law, tabulated profile, flat punch).
 Normalised mode (default): x, y, z in units of the contact radius a, stresses divided by the mean
 contact pressure p_m = F_N / (pi a^2), dp/dz by p_m / a. Physical mode (the recipe gives E):
-metres, pascals. Equations, conventions and errata: docs/theory/axisymmetric.md (A1)-(A64), below
-the surface docs/theory/interior.md (I1)-(I28).
+metres, pascals. Load control: the normal load as delta or normal_force (physical mode), the
+tangential load as ux0, fx = F_x/(mu F_N) or tangential_force (physical mode); the others are
+derived (Cattaneo–Mindlin in the MDR, (A4), (A32)-(A34)) and can be written as variables.
+Equations, conventions and errata: docs/theory/axisymmetric.md (A1)-(A64), below the surface
+docs/theory/interior.md (I1)-(I28).
 
 This module declares and maps: recipe values -> a ``physics.axisymmetric`` profile -> one call of
 ``physics.axisymmetric.fields`` (which decides the route, ``physics.axisymmetric.resolve``) -> the
@@ -21,6 +24,8 @@ import numpy as np
 
 from ..physics import axisymmetric as ax
 from ..physics.axisymmetric import PRINCIPAL, STRESS
+from ..physics.axisymmetric.profiles import (displacement_ratio, force_ratio, radius_at_force, slip_of_displacement,
+                                             slip_ratio)
 from .base import ARRAY, STR, Parameter, Scenario, Variable, table_step_problem
 
 REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient of hydrostatic pressure "
@@ -35,11 +40,23 @@ DEPTH = ("z",) + SPATIAL  # z before y, x: a surface-parallel plane is contiguou
 NU = Parameter("nu", "Poisson's ratio of the half-space", default=0.3, low=0.0, high=0.5)
 MU = Parameter("mu", "coefficient of friction", default=0.0, low=0.0, high=10.0)
 UX0 = Parameter("ux0", "tangential rigid-body displacement u_x0 divided by the indentation depth delta "
-                "(0: normal load only)", default=0.0, low=0.0, high=1e3)
+                "(0: normal load only; or give fx, or tangential_force in physical mode)", default=0.0, low=0.0,
+                high=1e3, when={"fx": (None,), "tangential_force": (None,)})
+FX = Parameter("fx", "tangential force F_x divided by mu F_N (Cattaneo-Mindlin, instead of ux0; 1: onset of gross "
+               "slip)", low=0.0, high=1.0)
+# mode None, not "physical": a physical-mode parameter is required, and these are alternatives (the
+# check refuses them in normalised mode, in the words of the recipe's own mode check)
+TANGENTIAL_FORCE = Parameter("tangential_force", "tangential force F_x on the half-space along +x, at most mu F_N "
+                             "(instead of ux0; physical mode)", units="N", low=0.0, high=1e15,
+                             when={"fx": (None,)})
 E = Parameter("E", "Young's modulus of the half-space (giving it switches to physical units)",
               units="Pa", low=0.0, low_open=True, high=1e15, mode="physical")
-DELTA = Parameter("delta", "indentation depth", units="m", low=0.0, low_open=True, high=1e3,
-                  mode="physical")
+DELTA = Parameter("delta", "indentation depth (or give normal_force instead)", units="m", low=0.0, low_open=True,
+                  high=1e3, mode="physical", when={"normal_force": (None,)})
+NORMAL_FORCE = Parameter("normal_force", "normal force F_N pressing the indenter (instead of delta; physical mode)",
+                         units="N", low=0.0, low_open=True, high=1e15)
+#: the parameters above that only physical mode gives meaning to, though not declared physical
+PHYSICAL_LOADS = ("normal_force", "tangential_force")
 X = Parameter("x", "surface coordinate x (direction of the tangential load) divided by the contact "
               "radius a", units="1", units_physical="m", required=True, low=-1e6, high=1e6,
               meaning_physical="surface coordinate x (direction of the tangential load)")
@@ -76,13 +93,23 @@ PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-d
                                        "anywhere in the contact (p < -1e-9 p_m) are refused by the recipe check")
 
 
-def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[str, ...] = SPATIAL
-              ) -> tuple[Variable, ...]:
+DISPLACEMENT_COMMENT = (
+    "The displacement of the half-space, vanishing at infinity: normal and Cattaneo-Mindlin tangential parts "
+    "superposed (uncoupled, as the stresses), so at the surface inside the contact u_z = delta - f(r) plus the "
+    "(1-2nu) Cerruti part of the tangential traction, and in the stick zone u_x is the rigid-body displacement "
+    "u_x0 plus the radial displacement of the normal pressure (both extra parts vanish at nu = 0.5). Finite "
+    "everywhere, edge rings included (docs/theory/interior.md (I36)-(I44)). Closed forms for the flat punch and the "
+    "paraboloid; other profiles by the 1-D superposition of punches within rtol * delta, whatever the method.")
+
+
+def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[str, ...] = SPATIAL,
+              tangential: bool = True) -> tuple[Variable, ...]:
     """The output variables; `case` lists the non-spatial parameters, `geometry` the profile's,
-    `spatial` the point's coordinates (SPATIAL: the surface; DEPTH: with the depth z)."""
+    `spatial` the point's coordinates (SPATIAL: the surface; DEPTH: with the depth z); `tangential`:
+    with the tangential load variables (ux0, fx, tangential_force) of a Cattaneo–Mindlin load."""
     everything = case + spatial
     surface = case + SPATIAL
-    load = ("nu", "E", "delta") + geometry     # what fixes a, F_N and p_m
+    load = ("nu", "E", "delta", "normal_force") + geometry     # what fixes a, F_N and p_m
     deep = "z" in spatial
     at = "at depth z (z = 0: the surface)" if deep else "at z = 0"
     stress = [Variable(f"sigma_{c}", f"{'stress' if deep else 'surface stress'} component sigma_{c} {at}",
@@ -101,12 +128,20 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                  + ("(at z = 0: the limit z -> 0+)" if deep else "at z = 0+"),
                  units_physical="Pa/m", scale="p_m/a, with p_m = F_N/(pi a^2) and a the contact radius",
                  dims=everything),
+    ) + tuple(
+        Variable(f"u_{c}", f"displacement component u_{c} {at}" + (" (positive into the body)" if c == "z" else ""),
+                 units_physical="m", scale="the indentation depth delta", dims=everything,
+                 comment=DISPLACEMENT_COMMENT) for c in "xyz"
+    ) + (
         Variable("stick_radius", "radius c of the stick zone (Cattaneo-Mindlin; 0 in gross slip; a under "
                  "normal load only)", units_physical="m", scale="the contact radius a", dims=case),
         Variable("mean_pressure", "mean contact pressure p_m = F_N/(pi a^2)", units_physical="Pa",
                  scale="the effective modulus E* = E/(1-nu^2)", dims=load),
-        Variable("contact_radius", "contact radius a", units="m", dims=("delta",) + geometry, mode="physical"),
+        Variable("contact_radius", "contact radius a", units="m", dims=load, mode="physical",
+                 recorded_when=("normal_force",)),
         Variable("normal_force", "normal force F_N", units="N", dims=load, mode="physical"),
+        Variable("delta", "indentation depth delta", units="m", dims=load, mode="physical",
+                 recorded_when=("normal_force",)),
         Variable("region", "contact region of the surface point", dtype="int8", dims=surface,
                  flag_values=(0, 1, 2, 3),
                  flag_meanings=("outside_contact", "stick", "slip", "contact_without_tangential_traction"),
@@ -124,6 +159,21 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                                       "which the 1-D routes do not resolve. " if deep else "")
                          + "Only the variables in this file are considered.",
                  always=True),
+    ) + (tangential_loads(case) if tangential else ())
+
+
+def tangential_loads(case: tuple[str, ...]) -> tuple[Variable, ...]:
+    """The tangential load in its three forms (the one the recipe gives is a coordinate instead)."""
+    return (
+        Variable("ux0", "tangential rigid-body displacement u_x0 divided by the indentation depth delta "
+                 "(Cattaneo-Mindlin, docs/theory/axisymmetric.md (A32))", dims=case,
+                 recorded_when=("fx", "tangential_force"),
+                 comment="at fx = 1 the displacement of the onset of gross slip, mu E*/G*"),
+        Variable("fx", "tangential force F_x divided by mu F_N (1 in gross slip)", dims=case,
+                 recorded_when=("tangential_force",),
+                 comment="at mu = 0 with ux0 > 0 the limit mu -> 0+ (1, gross slip)"),
+        Variable("tangential_force", "tangential force F_x on the half-space along +x", units="N", dims=case,
+                 mode="physical", recorded_when=("fx",)),
     )
 
 
@@ -144,13 +194,21 @@ def make_profile(kind: str, p: Mapping[str, Any], physical: bool) -> ax.Profile:
     if kind == "power_law":
         return ax.power_law(p["A"] if physical else 1.0, p["n"])
     if kind == "flat_punch":
-        return ax.flat_punch(p["radius"], depth=float(p["delta"])) if physical else ax.flat_punch(1.0)
+        return ax.flat_punch(p["radius"], depth=float(punch_depth(p))) if physical else ax.flat_punch(1.0)
     return ax.tabulated(np.asarray(p["profile_r"]), np.asarray(p["profile_f"]))
 
 
 def effective_modulus(p: Mapping[str, Any]) -> np.ndarray:
     """E* = E/(1 - nu^2) of the recipe (physical mode)."""
     return _f(p, "E") / (1.0 - _f(p, "nu") ** 2)
+
+
+def punch_depth(p: Mapping[str, Any]) -> np.ndarray:
+    """The flat punch's depth: delta, or F_N/(2 E* radius) of the normal force
+    (docs/theory/axisymmetric.md (A8))."""
+    if "normal_force" in p:
+        return _f(p, "normal_force") / (2.0 * effective_modulus(p) * _f(p, "radius"))
+    return _f(p, "delta")
 
 
 def scales(p: Mapping[str, Any], physical: bool, a, profile: ax.Profile) -> tuple:
@@ -163,19 +221,68 @@ def scales(p: Mapping[str, Any], physical: bool, a, profile: ax.Profile) -> tupl
     return 1.0 / pm, a / pm
 
 
+#: the variables of the normal contact alone (dims: the load, not the tangential parameters)
+CONTACT = ("contact_radius", "delta", "mean_pressure", "normal_force")
+
+
 def contact(names, p: Mapping[str, Any], profile: ax.Profile, physical: bool) -> tuple[np.ndarray, dict]:
-    """The contact radius a (from delta in physical mode; 1 normalised, lengths in units of a) and
-    the requested ones of contact_radius, mean_pressure, normal_force in the variables' units."""
-    a = ax.contact_radius(profile, _f(p, "delta")) if physical else np.float64(1.0)
+    """The contact radius a (physical mode: from delta (A3), or from normal_force by inverting (A4); 1
+    normalised, lengths in units of a) and the requested ones of contact_radius, delta, mean_pressure,
+    normal_force in the variables' units."""
+    if not physical:
+        a = np.float64(1.0)
+    elif "normal_force" in p:
+        a = radius_at_force(profile, _f(p, "normal_force") / effective_modulus(p))
+    else:
+        a = ax.contact_radius(profile, _f(p, "delta"))
     out: dict[str, np.ndarray] = {}
     if "contact_radius" in names:
         out["contact_radius"] = a
+    if "delta" in names:
+        out["delta"] = profile.depth(a)
     if "mean_pressure" in names:
         pm = ax.mean_pressure(a, profile)          # p_m / E*
         out["mean_pressure"] = pm * effective_modulus(p) if physical else pm
     if "normal_force" in names:
         out["normal_force"] = profile.normal_force(a) * effective_modulus(p)
     return a, out
+
+
+def tangential_load(names, p: Mapping[str, Any], profile: ax.Profile, physical: bool, a) -> tuple:
+    """ux0 = u_x0/delta for the kernels, from ux0, fx or tangential_force (Cattaneo–Mindlin in the MDR,
+    docs/theory/axisymmetric.md (A32)-(A34), (A37)), and the requested ones of ux0, fx, tangential_force."""
+    nu, mu = _f(p, "nu"), _f(p, "mu")
+    if "ux0" in p:
+        ux0 = _f(p, "ux0")
+        fx = None
+    else:
+        fx = _f(p, "fx") if "fx" in p else _ratio_of_force(p, profile, a)
+        ux0 = displacement_ratio(slip_ratio(profile, a, fx), nu, mu)
+    out: dict[str, np.ndarray] = {}
+    if "ux0" in names:
+        out["ux0"] = ux0
+    if fx is None and ({"fx", "tangential_force"} & set(names)):
+        fx = force_ratio(profile, a, slip_of_displacement(ux0, nu, mu))
+    if "fx" in names:
+        out["fx"] = fx
+    if "tangential_force" in names:
+        out["tangential_force"] = fx * mu * _normal_force(p, profile, a)
+    return ux0, out
+
+
+def _normal_force(p, profile, a) -> np.ndarray:
+    """F_N (physical): as given, else of the contact radius (A4); the given one exactly, so that
+    tangential_force = mu * normal_force is gross slip (fx = 1) without rounding."""
+    return _f(p, "normal_force") if "normal_force" in p else profile.normal_force(a) * effective_modulus(p)
+
+
+def _ratio_of_force(p, profile, a) -> np.ndarray:
+    """fx = F_x/(mu F_N) of tangential_force; 0 without force (also at mu = 0, which the check allows only
+    then); at most 1 (the check refuses more than mu F_N: the ratio exceeds 1 only by rounding)."""
+    force = _f(p, "tangential_force")
+    limit = _f(p, "mu") * _normal_force(p, profile, a)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(force == 0.0, 0.0, np.minimum(force / limit, 1.0))
 
 
 def surface_point(p: Mapping[str, Any], physical: bool, a, keys: tuple[str, ...] = ("x", "y")) -> tuple:
@@ -191,6 +298,11 @@ def _evaluate(kind: str | None):
         physical = options["physical"]
         profile = make_profile(kind or p["profile"], p, physical)
         a, out = contact(names, p, profile, physical)
+        if set(names) <= set(CONTACT):      # their group's block carries no tangential parameter
+            return out
+        ux0, loads = tangential_load(names, p, profile, physical, a)
+        out.update(loads)
+        p = {**p, "ux0": ux0}
         local = [n for n in names if n in ax.FIELDS]
         if not local and not any(n in ax.PEAKS for n in names):
             return out
@@ -205,9 +317,16 @@ def _evaluate(kind: str | None):
         if "stick_radius" in values and not physical:
             values["stick_radius"] = values["stick_radius"] / a
         out.update(values)
+        out.update(displacement_units(values, profile, a, physical))
         return out
 
     return evaluate
+
+
+def displacement_units(values: dict, profile: ax.Profile, a, physical: bool) -> dict:
+    """The displacements of ``values`` (per delta) in metres in physical mode, unchanged normalised."""
+    delta = profile.depth(a) if physical else 1.0
+    return {n: values[n] * delta for n in ("u_x", "u_y", "u_z") if n in values}
 
 
 def peak_values(names, p, options, profile, a, scale, physical) -> dict:
@@ -255,14 +374,28 @@ def check_profile(values, physical, method):
                                 f"contact reaches the end of the table, r = {r[-1]!r} m; extend profile_r")
             elif np.all(deltas > 0.0):
                 radii = [float(v) for v in ax.contact_radius(profile, np.unique(deltas))]
+        elif physical and "normal_force" in values:
+            radii, problem = _radii_of_force(values, profile, float(r[-1]))
+            problems += [problem] if problem else []
         problems += _tensile(profile, radii, physical)
     if kind == "flat_punch" and isinstance(values.get("delta"), np.ndarray):
         problems.append("delta cannot be swept for profile = 'flat_punch': its contact radius is the punch "
                         "radius and every field scales with delta; give one value")
+    swept = [k for k in ("normal_force", "E", "nu") if np.ndim(values.get(k, 0.0)) > 0]
+    if kind == "flat_punch" and "normal_force" in values and swept:
+        problems.append(f"{', '.join(swept)} cannot be swept for profile = 'flat_punch' with normal_force: the depth "
+                        "F_N/(2 E* radius) scales every field; give one value")
     if method == "closed" and kind is not None and not ax.has_closed_form(kind, values.get("n")):
         problems.append(f"method.method = 'closed' has no closed form for profile = {kind!r}; "
                         "use 'auto' or 'quadrature'")
     return problems
+
+
+def _tangential(values) -> bool:
+    """Whether a Cattaneo–Mindlin load acts: mu > 0 and a tangential displacement, force or history."""
+    return bool(np.any(np.asarray(values.get("mu", 0.0)) > 0.0)
+                and any(np.any(np.abs(np.asarray(values.get(k, 0.0), dtype=float)) > 0.0)
+                        for k in ("ux0", "fx", "tangential_force", "ux0_history")))
 
 
 def check_depth(kind: str | None = None):
@@ -272,17 +405,70 @@ def check_depth(kind: str | None = None):
 
     def check(values, physical, method):
         problems = check_profile(values, physical, method) if kind is None else []
+        problems += check_load(kind, values, physical)
         if not np.any(np.asarray(values.get("z", 0.0), dtype=float) > 0.0):
             return problems
         which = kind or values.get("profile", PROFILE.default)
         if (method == "closed" and ax.has_closed_form(which, values.get("n"))
-                and not ax.has_interior_closed_form(which, values.get("n"))):
+                and not ax.has_interior_closed_form(which, values.get("n"), tangential=_tangential(values))):
             problems.append(f"method.method = 'closed' has no closed form below the surface (z > 0) for "
                             f"{'profile = ' + repr(which) if kind is None else 'the ' + which}; use 'auto' or "
                             "'quadrature', or z = 0")
         return problems
 
     return check
+
+
+def _radii_of_force(values, profile, end: float) -> tuple[list[float], str | None]:
+    """The contact radii of a tabulated profile under every normal force of the recipe, or why the
+    largest force pushes the contact beyond the table."""
+    e_star = np.atleast_1d(values["E"])[:, None] / (1.0 - np.atleast_1d(values["nu"])[None, :] ** 2)
+    forces = np.unique(np.atleast_1d(values["normal_force"])[:, None] / e_star.ravel()[None, :])
+    reach = float(profile.normal_force(end))
+    if forces.max() > reach:
+        most = float(np.max(values["normal_force"]))
+        return [], (f"normal_force = {most!r} N exceeds the force {reach * float(e_star.min())!r} N at which the "
+                    f"contact reaches the end of the table, r = {end!r} m (with E* = {float(e_star.min())!r} Pa); "
+                    "extend profile_r")
+    return [float(v) for v in radius_at_force(profile, forces)], None
+
+
+def check_load(kind: str | None, values, physical) -> list[str]:
+    """The load-control parameters: normal_force and tangential_force only in physical mode; no
+    tangential force without friction; tangential_force at most mu F_N (the onset of gross slip)."""
+    problems = [] if physical else [f"parameter '{k}' is only used in physical mode; give 'E' to switch to "
+                                    "physical units" for k in PHYSICAL_LOADS if k in values]
+    mu = np.atleast_1d(values.get("mu", MU.default))
+    for key in ("fx", "tangential_force"):
+        load = np.atleast_1d(values.get(key, 0.0))
+        if np.any(load > 0.0) and np.any(mu == 0.0):
+            problems.append(f"{key} = {float(load.max())!r} with mu = 0: a contact without friction carries no "
+                            f"tangential force; give mu > 0 or {key} = 0")
+    if physical and "tangential_force" in values and not problems:
+        problems += _force_limit(kind or values.get("profile", PROFILE.default), values, float(mu.min()))
+    return problems
+
+
+def _force_limit(kind: str, values, mu: float) -> list[str]:
+    """tangential_force <= mu F_N at every point of the sweep: against the least mu F_N (F_N grows with
+    delta or normal_force, with E and with nu)."""
+    force = float(np.max(values["tangential_force"]))
+    e_star = float(np.min(values["E"])) / (1.0 - float(np.min(values["nu"])) ** 2)
+    if "normal_force" in values:
+        least = float(np.min(values["normal_force"]))
+    else:
+        delta = float(np.min(values["delta"]))
+        profile = make_profile(kind, {**values, "delta": delta}, True)
+        try:
+            least = float(profile.normal_force(ax.contact_radius(profile, delta))) * e_star
+        except ValueError:          # beyond a tabulated profile: check_profile says so
+            return []
+    limit = mu * least
+    if force <= limit:
+        return []
+    return [f"tangential_force = {force!r} N exceeds mu F_N = {limit!r} N (mu = {mu!r}, F_N = {least!r} N), the "
+            "largest tangential force the contact carries (the onset of gross slip, fx = 1); give "
+            f"tangential_force <= {limit!r} N"]
 
 
 #: p / p_m below this is tensile: far beyond the quadrature's error (1e-10 p_m) of ``min_pressure``
@@ -311,10 +497,11 @@ def route_of(kind: str | None = None, default: str = PROFILE.default):
         which = kind or values.get("profile", default)
         z, n = values.get("z"), values.get("n")
         tangential = bool(np.any(np.asarray(values.get("mu", 0.0)) > 0.0)
-                          and np.any(np.asarray(values.get("ux0", 0.0)) > 0.0))
+                          and any(np.any(np.asarray(values.get(k, 0.0)) > 0.0)
+                                  for k in ("ux0", "fx", "tangential_force")))
         floor = ax.tangential_floor(which, n) if tangential else ax.INTERIOR_RTOL
         if z is not None and np.any(np.asarray(z, dtype=float) > 0.0) and rtol < floor \
-                and ax.resolve_interior(which, method, floor, n).kernel == "quadrature":
+                and ax.resolve_interior(which, method, floor, n, tangential=tangential).kernel != "closed":
             from ..recipe import RecipeError     # the check does not see rtol; recipe imports this module
             load = " under tangential load" if floor > ax.INTERIOR_RTOL else ""
             raise RecipeError([f"method.rtol = {rtol:g} is below {floor:g}, the smallest the superposition "
@@ -365,7 +552,7 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
 
 
 def _scenario(name, summary, geometry, kind):
-    params = (NU, MU, UX0, E, DELTA) + geometry + (Z, Y, X)
+    params = (NU, MU, UX0, FX, TANGENTIAL_FORCE, E, DELTA, NORMAL_FORCE) + geometry + (Z, Y, X)
     case = tuple(p.name for p in params if p.name not in DEPTH)
     return Scenario(
         name=name, summary=summary, references=REFERENCE, theory="axisymmetric", parameters=params,

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Callable, Mapping, Protocol, Sequence, TypedDict
+from typing import Any, Callable, Collection, Mapping, Protocol, Sequence, TypedDict
 
 import numpy as np
 
@@ -88,8 +88,11 @@ class Parameter:
         return self.meaning_physical if (physical and self.meaning_physical) else self.meaning
 
     def condition(self) -> str:
-        """The `when` condition in words: keys joined by 'and', values of one key by 'or'."""
-        return " and ".join(" or ".join(f"{k} = {v!r}" for v in vs) for k, vs in self.when.items())
+        """The `when` condition in words: keys joined by 'and', values of one key by 'or'; the value
+        None reads "<key> is not given" (a parameter that is the alternative of another, e.g. delta
+        applies when normal_force is not given)."""
+        return " and ".join(" or ".join(f"{k} is not given" if v is None else f"{k} = {v!r}" for v in vs)
+                            for k, vs in self.when.items())
 
     def allowed(self) -> str:
         """Plain-language description of the allowed values, used in errors and in the schema."""
@@ -173,6 +176,9 @@ class Variable:
     #: stored as a coordinate (not a dimension): a value the others are read and plotted against,
     #: e.g. the displacement of each step of a history (``ds.plot(x="ux0")``)
     coordinate: bool = False
+    #: joins the default variable list when the recipe gives one of these parameters: a load derived
+    #: from them (e.g. delta when normal_force is given); recipes giving none keep their list and hash
+    recorded_when: tuple[str, ...] = ()
 
     def units_in(self, physical: bool) -> str:
         return self.units_physical if (physical and self.units_physical) else self.units
@@ -232,6 +238,19 @@ class Scenario:
     def variables_in(self, physical: bool) -> tuple[Variable, ...]:
         mode = "physical" if physical else "normalised"
         return tuple(v for v in self.variables if v.mode in (None, mode))
+
+    def available(self, physical: bool, given: Collection[str] = ()) -> tuple[Variable, ...]:
+        """The variables a recipe may request: those of the mode, less any whose name is a parameter
+        the recipe has a value for (``given``): that value is already a coordinate of the dataset."""
+        return tuple(v for v in self.variables_in(physical) if v.name not in given)
+
+    def defaults(self, physical: bool, given: Collection[str] = ()) -> tuple[str, ...]:
+        """The variables written when the recipe names none: ``default_variables`` (else every
+        available one that is not always-on), then those ``recorded_when`` a parameter in ``given``."""
+        names = {v.name for v in self.available(physical, given)}
+        base = self.default_variables or [v.name for v in self.variables_in(physical) if not v.always]
+        extra = [v.name for v in self.variables_in(physical) if set(v.recorded_when) & set(given)]
+        return tuple(n for n in dict.fromkeys([*base, *extra]) if n in names)
 
 
 #: the smallest step of a tabulated profile, relative to its span: the graded quadrature breaks

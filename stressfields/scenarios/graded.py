@@ -129,14 +129,19 @@ def _check_profile(values, method):
 
 
 def _grid(values, names):
-    """The named values as mutually broadcasting arrays (one axis per swept parameter)."""
-    swept = [n for n in names if isinstance(values.get(n), np.ndarray)]
+    """The named values as mutually broadcasting arrays: one axis per swept parameter, and one axis
+    (last) shared by the [points] columns (``values.points``: one value per point, paired as the
+    points pair them, not crossed as a sweep is)."""
+    columns = set(getattr(values, "points", ()))
+    arrays = [n for n in names if isinstance(values.get(n), np.ndarray)]
+    swept = [n for n in arrays if n not in columns]
+    ndim = len(swept) + any(n in columns for n in arrays)
     out = {}
     for n in names:
         v = values.get(n)
         if isinstance(v, np.ndarray):
-            shape = [1] * len(swept)
-            shape[swept.index(n)] = v.size
+            shape = [1] * ndim
+            shape[-1 if n in columns else swept.index(n)] = v.size
             v = v.reshape(shape)
         out[n] = v
     return out
@@ -343,6 +348,8 @@ def _check_tangential(values, physical, method):
                 "the bodies must be identical (E0_2 = E0, nu_2 = nu) or both have nu = nu_2 = 1/(2+k)")
         where = f"nu = {at(nu)!r} with k = {at(k)!r}" + (
             f", E0 = {at(e0)!r}, E0_2 = {at(e2)!r}, nu_2 = {at(nu2)!r}" if values["body2"] == "elastic" else "")
+        if set(PAIR) & set(getattr(values, "points", ())):
+            where += f" at point {int(bad[-1])}"       # the [points] columns share the last axis
         problems.append(f"{where} (body2 = {values['body2']!r}): the normal and tangential problems do not "
                         f"decouple; {need}, here {holl:.12g} (Hess & Popov 2016, sec. 5). Set poisson = "
                         "'holl_ratio', or uncoupled_approximation = 'flag' to compute the uncoupled approximation "

@@ -4,10 +4,10 @@ Scenario `axisymmetric_history`: the fields of the `axisymmetric` scenarios afte
 step of a tangential displacement history u_x0(t), from the MDR spring memory of eq. (27)-(28)
 (``physics.axisymmetric.history_fields``; docs/theory/axisymmetric.md (A65)-(A77)), plus the tangential
 force, the stick radius, and the energy dissipated by friction.  Parameters, normalisation
-(p_m = F_N/(pi a^2)), physical mode (give E) and flags are those of the `axisymmetric` scenarios,
-and so is the depth `z`: below the surface the normal interior field plus the same weighted sum of
-Cattaneo–Mindlin interior fields as on the surface (docs/theory/axisymmetric.md (A69),
-docs/theory/interior.md (I23), (I33)).
+(p_m = F_N/(pi a^2)), physical mode (give E; the normal load as delta or normal_force) and flags
+are those of the `axisymmetric` scenarios, and so is the depth `z`: below the surface the normal
+interior field plus the same weighted sum of Cattaneo–Mindlin interior fields as on the surface
+(docs/theory/axisymmetric.md (A69), docs/theory/interior.md (I23), (I33)).
 
 The history is a sweep-free array parameter; its index is the dimension `step`.  `step` is an
 ordinary sweepable integer parameter; when the recipe does not give it, the scenario's check fills
@@ -22,9 +22,9 @@ import numpy as np
 
 from ..physics import axisymmetric as ax
 from ..physics.axisymmetric import PRINCIPAL, STRESS
-from .axisymmetric import (A, DELTA, DEPTH, E, MU, N, NU, PROFILE_F, PROFILE_R, R, REFERENCE, THETA, X, Y, Z,
-                           check_depth, contact, effective_modulus, make_profile, route_of, scales,
-                           surface_point, variables)
+from .axisymmetric import (A, DELTA, DEPTH, E, MU, N, NORMAL_FORCE, NU, PROFILE_F, PROFILE_R, R, REFERENCE,
+                           THETA, X, Y, Z, check_depth, contact, displacement_units, effective_modulus, make_profile,
+                           route_of, scales, surface_point, variables)
 from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
 
 HISTORY = Parameter("ux0_history", "tangential rigid-body displacements u_x0 divided by the indentation depth "
@@ -40,7 +40,7 @@ PROFILE = Parameter("profile", "indenter profile", kind=STR, default="paraboloid
 THETA_H = dataclasses.replace(THETA, when={"profile": ("cone",)})
 R_H = dataclasses.replace(R, when={"profile": ("paraboloid",)})
 GEOMETRY = (PROFILE, THETA_H, R_H, N, A, PROFILE_R, PROFILE_F)
-PARAMETERS = (NU, MU, AMPLITUDE, STEP, E, DELTA) + GEOMETRY + (HISTORY, Z, Y, X)
+PARAMETERS = (NU, MU, AMPLITUDE, STEP, E, DELTA, NORMAL_FORCE) + GEOMETRY + (HISTORY, Z, Y, X)
 CASE = tuple(p.name for p in PARAMETERS if p.name not in DEPTH)
 
 LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle_energy", "ux0")
@@ -48,7 +48,7 @@ LOADS = ("stick_radius", "tangential_force", "dissipated_energy", "cycle_energy"
 
 def _history_variables() -> tuple[Variable, ...]:
     base = []
-    for v in variables(CASE, tuple(p.name for p in GEOMETRY), DEPTH):
+    for v in variables(CASE, tuple(p.name for p in GEOMETRY), DEPTH, tangential=False):
         if v.name == "stick_radius":
             continue
         if v.name == "region":
@@ -113,6 +113,7 @@ def evaluate(names, p, options):
                 values[n] = values[n] * unit
     elif "stick_radius" in values:
         values["stick_radius"] = values["stick_radius"] / a
+    values.update(displacement_units(values, profile, a, physical))
     out.update(values)
     return out
 
