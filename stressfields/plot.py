@@ -1,7 +1,7 @@
 """Quick-look PNGs of a written dataset, driven by the recipe's optional [plot] table.
 
     [plot]
-    kind = "line"            # "line": curves along `x`, one per value of `hue`; "map": x-y maps
+    kind = "line"            # "line": curves along `x`, one per value of `hue`; "map": maps
     x = "x"                  # the horizontal dimension, or a variable to plot against
     marker = "o"             # optional marker (e.g. for the turning points of a history)
     hue = "mu"               # one curve per value (line plots)
@@ -10,6 +10,13 @@
 Other dimensions are held at their first value. recipe.py checks the table; every table it
 accepts is drawn, and so is a recipe without one (a recipe with nothing swept gets its values as
 text).
+
+Maps (``map_plane``): over x and y where the recipe sweeps both; otherwise, where it sweeps x and
+the depth z, a section below the surface: filled contours in the x-z plane, depth downwards, and,
+where the file holds the variable's per-case peak (``<name>_peak``, ``_peak_r``, ``_peak_depth``),
+that peak marked and quoted from the file (``plot_kind``: a recipe sweeping x and z whose table asks
+for no line, neither plot.x nor plot.hue, gets this section). A line along z is drawn as a depth
+profile, depth downwards.
 """
 from __future__ import annotations
 
@@ -20,7 +27,7 @@ import numpy as np
 import xarray as xr
 
 from .reading import open_dataset
-from .recipe import plot_along
+from .recipe import map_plane, plot_along, plot_kind
 
 #: at most this many panels (3 columns)
 MAX_PANELS = 6
@@ -58,12 +65,15 @@ def quicklook(path: str | Path, recipe) -> Path:
 
 def _figure(plt, ds: xr.Dataset, recipe):
     spec, swept = recipe.plot, recipe.swept
-    kind = spec.get("kind", "map" if {"x", "y"} <= set(swept) else "line")
+    kind = plot_kind(spec, swept)
+    plane = map_plane(swept) if kind == "map" else None
+    if kind == "map" and plane is None:     # not a table recipe.py accepts: draw the values
+        return _text_figure(plt, ds, recipe)
     xname = spec.get("x", "x" if kind == "map" else (swept[-1] if swept else None))
     hue = spec.get("hue")
     dims = {n: v.dims for n, v in ds.variables.items()}      # coordinates too: plot.x may be one (ux0)
     along = plot_along(xname, hue, swept, dims) if kind == "line" and xname else None
-    need = {"x", "y"} if kind == "map" else {along}
+    need = set(plane) if kind == "map" else {along}
     names = [n for n in spec.get("variables", recipe.variables)
              if n in ds.data_vars and need <= set(ds[n].dims)][:MAX_PANELS]
     if not names:
@@ -73,7 +83,7 @@ def _figure(plt, ds: xr.Dataset, recipe):
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol + 1.0, 3.8 * nrow + 0.4), squeeze=False)
     for ax, name in zip(axes.flat, names):
         if kind == "map":
-            _map(ax, ds, name)
+            _map(ax, ds, name, plane)
         else:
             _lines(ax, ds, name, xname, along, hue, spec.get("marker"))
             if "ylim" in spec:
@@ -85,9 +95,13 @@ def _figure(plt, ds: xr.Dataset, recipe):
     return fig
 
 
-def _map(ax, ds, name):
+def _map(ax, ds, name, plane=("x", "y")):
     da = ds[name]
-    da = da.isel({d: 0 for d in da.dims if d not in ("x", "y")})
+    hold = {d: 0 for d in da.dims if d not in plane}
+    da = da.isel(hold)
+    if plane == ("x", "z"):
+        _section(ax, ds, da, hold)
+        return
     da.transpose("y", "x").plot(ax=ax, robust=True, cbar_kwargs={"label": _label(da)})
     ax.set_aspect("equal")
     ax.set_xlabel(_label(ds["x"]))
@@ -95,18 +109,137 @@ def _map(ax, ds, name):
 
 
 def _lines(ax, ds, name, xname, along, hue, marker):
-    """One curve of `name` against `xname` along `along` per value of `hue`; other dims at index 0."""
+    """One curve of `name` against `xname` along `along` per value of `hue`; other dims at index 0.
+    Against the depth z the curves are depth profiles: z on the vertical axis, downwards."""
     y, x = xr.broadcast(ds[name], ds[xname])
     hold = {d: 0 for d in y.dims if d not in (along, hue)}
     y, x = y.isel(hold), x.isel(hold)
+    depth = xname == "z"
+    xlabel, ylabel = _label(ds[xname]), _label(ds[name])
+
+    def draw(xs, ys, **kw):
+        ax.plot(*((ys, xs) if depth else (xs, ys)), lw=1, marker=marker, **kw)
+
     if hue in y.dims:
         for i, text in enumerate(_legend(ds[hue])):
-            ax.plot(x.isel({hue: i}).values, y.isel({hue: i}).values, lw=1, marker=marker, label=text)
+            draw(x.isel({hue: i}).values, y.isel({hue: i}).values, label=text)
         ax.legend(fontsize=7)
     else:
-        ax.plot(x.values, y.values, lw=1, marker=marker)
-    ax.set_xlabel(_label(ds[xname]))
-    ax.set_ylabel(_label(ds[name]))
+        draw(x.values, y.values)
+    if depth:
+        xlabel, ylabel = ylabel, _label(ds["z"])
+        ax.invert_yaxis()
+        ax.axvline(0.0, color="0.6", lw=0.5)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+
+
+def _section(ax, ds, da, hold):
+    """Filled contours of `da` in the x-z plane, depth downwards, with the file's peak marked."""
+    values = np.ma.masked_invalid(da.transpose("z", "x").values)
+    if not values.count():
+        ax.text(0.5, 0.5, "no finite values", ha="center", va="center", transform=ax.transAxes)
+        return
+    peak = _peak(ds, da.name, hold)
+    levels, extend = _levels(values, peak)
+    x, z = ds["x"].values, ds["z"].values
+    filled = ax.contourf(x, z, values, levels=levels, extend=extend, cmap="viridis")
+    ax.contour(x, z, values, levels=levels, colors="k", linewidths=0.4)
+    above = levels[-1] * np.sqrt(2.0) ** np.arange(1, 9)      # beyond the colours: lines that crowd
+    above = above[above < values.max()]                        # towards a singular point
+    if extend == "max" and above.size and levels[-1] > 0:
+        ax.contour(x, z, values, levels=above, colors="w", linewidths=0.4)
+    bar = ax.figure.colorbar(filled, ax=ax, orientation="horizontal", pad=0.28, aspect=40)
+    bar.set_label(_bar_label(da), fontsize=7)
+    bar.ax.tick_params(labelsize=7)
+    p0 = _centre_pressure(ds, hold)
+    if p0 is not None:          # the textbook scale: the centre pressure p(0) of the same case
+        top = bar.ax.secondary_xaxis("top", functions=(lambda v: v / p0, lambda v: v * p0))
+        top.set_xlabel(f"{da.name} / p(0), centre pressure p(0) = -sigma_zz(0, 0, 0) = {p0:#.4g} "
+                       f"{_unit(ds['sigma_zz'])}", fontsize=7)
+        top.tick_params(labelsize=7)
+    ax.set_xlim(x.min(), x.max())
+    ax.set_ylim(z.max(), z.min())               # depth downwards
+    ax.set_aspect("equal")
+    ax.set_xlabel(_label(ds["x"]))
+    ax.set_ylabel(_label(ds["z"]))
+    if peak is not None:
+        _mark(ax, ds, da, peak, p0, hold)
+
+
+def _levels(values, peak):
+    """About 12 contour levels from the smallest value to the file's peak where it is finite, else
+    to the 98th percentile if the grid holds a singular point (+-inf: the field's growth next to it
+    would take every level), else to the largest value; "max" where values lie above the top."""
+    from matplotlib.ticker import MaxNLocator
+
+    finite = values.compressed()
+    if peak is not None and np.isfinite(peak["value"]):
+        top = max(peak["value"], finite.max())          # the supremum; max: a grid point on it, rounded
+    elif np.ma.count_masked(values):
+        top = float(np.percentile(finite, 98))
+    else:
+        top = float(finite.max())
+    low = float(finite.min())
+    top = top if top > low else low + (abs(low) or 1.0)        # a uniform field: one band
+    levels = MaxNLocator(nbins=12).tick_values(low, top)
+    levels = levels[levels <= top + 1e-12 * abs(top)]
+    if top > levels[-1]:
+        levels = np.append(levels, top)
+    above = finite.max() > levels[-1] or np.isposinf(values.data).any()
+    return levels, "max" if above else "neither"
+
+
+def _peak(ds, name, hold) -> dict | None:
+    """The file's peak of `name` for the shown case and where it sits (on y = 0), or None."""
+    keys = (f"{name}_peak", f"{name}_peak_r", f"{name}_peak_depth")
+    if not all(k in ds.data_vars for k in keys) or _scalar(ds, "y", hold, 0.0) != 0.0:
+        return None                             # no peak in the file, or the plane is not y = 0
+    value, x, depth = (_scalar(ds, k, hold) for k in keys)
+    flag = int(_scalar(ds, "peak_validity", hold, 0))
+    return {"value": value, "x": x, "depth": depth, "flag": flag}
+
+
+def _scalar(ds, name, hold, default=None):
+    """The value of `name` at the held indices of the shown case (`default` if not in the file)."""
+    if name not in ds.variables:
+        return default
+    da = ds[name]
+    return da.isel({d: i for d, i in hold.items() if d in da.dims}).values.item()
+
+
+def _centre_pressure(ds, hold) -> float | None:
+    """p(0) = -sigma_zz at the surface centre x = y = z = 0 of the shown case, if the file holds it
+    and it is finite (Hertz: p0 = 3/2 p_m)."""
+    if "sigma_zz" not in ds.data_vars or _scalar(ds, "y", hold, 0.0) != 0.0:
+        return None
+    s = ds["sigma_zz"].isel({d: i for d, i in hold.items() if d in ds["sigma_zz"].dims})
+    hit = (s["x"] == 0.0) & (s["z"] == 0.0)
+    if int(hit.sum()) != 1:
+        return None
+    p0 = -float(s.where(hit, drop=True).values.ravel()[0])
+    return p0 if np.isfinite(p0) and p0 > 0.0 else None
+
+
+def _mark(ax, ds, da, peak, p0, hold):
+    """The peak of the file: one marker, two at x = +-r under normal load (an axisymmetric field:
+    the file gives r >= 0), and its value and position in the legend."""
+    if peak["flag"] == 2 or not np.isfinite(peak["x"]):       # NaN: no point to mark
+        return
+    tangential = _scalar(ds, "mu", hold, 0.0) * _scalar(ds, "ux0", hold, 0.0) > 0.0
+    xs = [peak["x"]] if tangential or peak["x"] == 0.0 else [-peak["x"], peak["x"]]
+    length, unit = _unit(ds["x"]), _unit(da)
+    where = f"x = {'+-' if len(xs) > 1 else ''}{peak['x']:.4g} {length}, z = {peak['depth']:.4g} {length}"
+    if np.isinf(peak["value"]):
+        text = f"{da.name} unbounded at {where}"
+    else:
+        scale = f" = {peak['value'] / p0:#.4g} p(0)" if p0 is not None else ""
+        text = f"{da.name} peak {peak['value']:#.4g} {unit}{scale} at {where}"
+        if peak["flag"] == 4:
+            text += " (search not converged: best found)"
+    ax.plot(xs, [peak["depth"]] * len(xs), ls="", marker="X", ms=8, color="red", mec="white", mew=0.8,
+            label=text, clip_on=False, zorder=5)
+    ax.legend(loc="lower center", fontsize=6.5, framealpha=0.85)
 
 
 def _text_figure(plt, ds, recipe):
@@ -121,15 +254,50 @@ def _text_figure(plt, ds, recipe):
 
 
 def _legend(coord) -> list[str]:
-    """One entry per value of a hue dimension: the name of a choice, else ``name = value``."""
+    """One entry per value of a hue dimension: the name of a choice, else ``name = value``, with
+    the coordinates along the same dimension (a history's ``ux0`` beside its ``step``)."""
     values = np.asarray(coord.values)
     if values.dtype.kind in "OUST":
         return [str(v) for v in values]
-    return [f"{coord.name} = {v:g}" for v in values.tolist()]
+    also = [c for c in coord.coords if c != coord.name and coord[c].dims == coord.dims]
+    return [f"{coord.name} = {v:g}" + "".join(f", {c} = {float(coord[c][i]):.4g}" for c in also)
+            for i, v in enumerate(values.tolist())]
+
+
+def _unit(da) -> str:
+    """The unit of a value: its units, or in normalised mode the symbol it is divided by."""
+    units = da.attrs.get("units")
+    if units and units != "1":
+        return units
+    return _symbol(da)
+
+
+def _symbol(da) -> str:
+    """The symbol a normalised variable is divided by ("p_m", "a", "(mu F_N)"), from its
+    normalisation or the tail of its long_name ("... divided by the contact radius a"); "" if none
+    or if the tail is a phrase rather than a symbol (more than 12 characters)."""
+    norm = da.attrs.get("normalisation") or da.attrs.get("long_name", "").partition(" divided by ")[2]
+    norm = norm.split(",")[0].split(" = ")[0].split(" (")[0].strip()
+    norm = norm.split()[-1] if norm.startswith("the ") else norm
+    if len(norm) > 12:
+        return ""
+    return f"({norm})" if set(norm) & set(" /") else norm
 
 
 def _label(da) -> str:
-    """An axis label of one short line: the variable's name and its units (the long_name would wrap
-    onto 4-8 lines; it is the panel's title)."""
+    """An axis label of one short line: the variable's name and its units, or in normalised mode
+    the symbol it is divided by (x / a, sigma_xx / p_m); the depth z says so (the long_name would
+    wrap onto 4-8 lines; it is the panel's title)."""
     units = da.attrs.get("units")
-    return f"{da.name} [{units}]" if units and units != "1" else str(da.name)
+    symbol = _symbol(da)
+    text = f"{da.name} [{units}]" if units and units != "1" else (
+        f"{da.name} / {symbol}" if symbol else str(da.name))
+    return text + (" (depth)" if da.name == "z" else "")
+
+
+def _bar_label(da) -> str:
+    """The colour bar: name, unit and the long_name up to its "at depth" / "divided by"."""
+    text = da.attrs.get("long_name", da.name)
+    for cut in (" divided by ", " at depth ", " at z = "):
+        text = text.split(cut)[0]
+    return textwrap.shorten(f"{_label(da)}: {text}", TITLE_CHARS, placeholder=" ...")
