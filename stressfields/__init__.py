@@ -7,6 +7,7 @@
     sf.open_dataset("cone.nc")                      # reopen lazily, choice dimensions labelled by name
     sf.estimate("recipes/cone_figures.toml")        # dimensions, points, bytes, seconds before running
     sf.scenarios()                                  # names with one-line descriptions
+    sf.compare("recipe.toml", "nodes.csv")          # your FE results against the reference at their nodes
 
 The names are imported on first use: xarray imports this package to list its backend
 (``engine="stressfields"``) whenever it opens a file, and that must not load the physics.
@@ -22,10 +23,10 @@ from .errors import OutputError  # noqa: E402
 #: public name -> the module that defines it
 _LAZY = {"generate": "api", "estimate": "api", "scenarios": "api", "describe": "api", "RecipeError": "recipe",
          "write": "writers", "to_netcdf": "writers", "export": "writers", "output_options": "writers",
-         "open_dataset": "reading"}
+         "open_dataset": "reading", "compare": "comparison"}
 
 __all__ = ["generate", "write", "to_netcdf", "export", "open_dataset", "output_options", "estimate", "scenarios",
-           "describe", "RecipeError", "OutputError", "__version__"]
+           "describe", "compare", "RecipeError", "OutputError", "__version__"]
 
 
 def __getattr__(name: str):

@@ -1,14 +1,18 @@
-"""The public Python API; the command line calls the same functions."""
+"""The public Python API; the command line calls the same functions.
+
+xarray, dask and the recipe checker (which imports the writers) are imported by the functions that
+use them, so that `scenarios` and `describe` (and `stressfields list`/`describe`) load only the
+scenario declarations.
+"""
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Mapping
+from typing import TYPE_CHECKING, Mapping
 
-import xarray as xr
-
-from . import recipe as _recipe
-from .build import build
 from .scenarios import REGISTRY
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 
 def generate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None) -> xr.Dataset:
@@ -17,15 +21,19 @@ def generate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None)
     ``recipe`` is a TOML path or a dict with the same keys; ``chunks`` overrides the recipe's
     chunk sizes per dimension.
     """
-    return build(_recipe.load(recipe), chunks)
+    from .build import build
+    from .recipe import load
+
+    return build(load(recipe), chunks)
 
 
 def estimate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None) -> dict:
     """What running ``recipe`` will produce, before anything large is computed: ``dims``, ``points``,
     ``bytes``, ``chunks`` and ``seconds`` (extrapolated from evaluating a small leading slice)."""
     from .build import estimate as _estimate
+    from .recipe import load
 
-    return _estimate(_recipe.load(recipe), chunks)
+    return _estimate(load(recipe), chunks)
 
 
 def scenarios() -> dict[str, str]:
@@ -40,3 +48,4 @@ def describe(name: str) -> str:
     if name not in REGISTRY:
         raise KeyError(f"unknown scenario {name!r}; one of: {', '.join(REGISTRY)}")
     return scenario_text(REGISTRY[name])
+
