@@ -17,13 +17,10 @@ from pathlib import Path
 
 from . import __version__
 from .errors import OutputError
+from .options import DTYPES, NONFINITE
 
 #: the unit conversions of `compare` (comparison.UNITS, held equal by tests/test_compare.py)
 COMPARE_UNITS = ("Pa", "kPa", "MPa", "GPa", "m", "mm", "um", "N", "1")
-#: the output options' choices, as writers.DTYPES and writers.NONFINITE (held equal by
-#: tests/test_lazy_imports.py): the parser is built for every command, the writers only for `run`
-DTYPES = ("float64", "float32")
-NONFINITE = ("keep", "nan", "fill")
 
 LOCAL_SCHEDULERS = ("threads", "synchronous", "processes")
 #: sweeps larger than this are written in resumable parts

@@ -50,7 +50,7 @@ from .errors import show
 from .pointfiles import MAX_SWEEP, file_label, read_points_file
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
-from .writers import output_option_problems
+from .options import output_option_problems
 
 TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot")
 #: the dimension along which the [points] columns vary together (last, after the swept ones)

@@ -30,6 +30,7 @@ import xarray as xr
 
 from . import netcdf, zarrstore
 from .errors import OutputError
+from .options import DTYPES, NONFINITE, output_option_problems  # noqa: F401 (re-exported)
 
 
 class Writer(Protocol):
@@ -66,8 +67,6 @@ def format_for(path: str | os.PathLike) -> Format:
 
 #: the global attribute recording the output options a file was written with
 OPTIONS_ATTR = "stressfields_output"
-DTYPES = ("float64", "float32")
-NONFINITE = ("keep", "nan", "fill")
 #: what float32 storage adds to every stated accuracy (float32 has a 24-bit significand)
 FLOAT32_NOTE = ("Stored as float32: add a rounding error of at most 6e-8 (2^-24) of |value| "
                 "(at most 1.4e-45 absolute below |value| = 1.2e-38).")
@@ -100,20 +99,6 @@ class OutputOptions:
         return output_options(dtype=items.get("dtype", "float64"),
                               compression=None if level == "default" else int(level),
                               nonfinite=items.get("nonfinite", "keep"))
-
-
-def output_option_problems(dtype="float64", compression=None, nonfinite="keep") -> list[str]:
-    """Every problem of a set of output options, each naming the key, the value and what is allowed
-    (for a recipe's ``[output]`` to report them with its other problems)."""
-    problems = []
-    if dtype not in DTYPES:
-        problems.append(f"dtype = {dtype!r}: must be one of {', '.join(DTYPES)}")
-    if compression is not None and (isinstance(compression, bool) or not isinstance(compression, (int, np.integer))
-                                    or not 0 <= compression <= 9):
-        problems.append(f"compression = {compression!r}: must be an integer from 0 (none) to 9")
-    if nonfinite not in NONFINITE:
-        problems.append(f"nonfinite = {nonfinite!r}: must be one of {', '.join(NONFINITE)}")
-    return problems
 
 
 def output_options(dtype: str = "float64", compression: int | None = None, nonfinite: str = "keep") -> OutputOptions:
