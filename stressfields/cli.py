@@ -1,9 +1,10 @@
 """Command line: stressfields run | list | describe | validate | schema | export | hash | compare | bench.
 
 The heavy libraries (xarray, dask, the writers) are imported inside the commands that compute or
-write: `--help`, `list`, `describe` and `schema` need only the scenario declarations (measured:
-`stressfields describe conical` took 1.1 s with them imported at the top, 0.6 s without, medians of 5
-on a loaded 2-core machine; tests/test_lazy_imports.py holds it).
+write: `--help`, `list`, `describe`, `schema` and `validate` need only the scenario declarations,
+which import no kernel and no scipy (``physics/names.py``). Measured: `stressfields describe conical`
+took 1.19 s with everything imported at the top, 0.17-0.31 s now (medians of 5 on a 2-core machine
+at load 3-4); tests/test_lazy_imports.py holds what is imported.
 """
 from __future__ import annotations
 

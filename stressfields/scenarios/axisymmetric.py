@@ -14,19 +14,21 @@ docs/theory/interior.md (I1)-(I28).
 This module declares and maps: recipe values -> a ``physics.axisymmetric`` profile -> one call of
 ``physics.axisymmetric.fields`` (which decides the route, ``physics.axisymmetric.resolve``) -> the
 variables' units (``scales``).  The `axisymmetric_history` scenario shares the public helpers.
+The functions that compute import ``physics.axisymmetric`` when they run: the declarations need only
+``physics.names``, so that listing and describing the scenarios loads no kernel and no SciPy.
 """
 from __future__ import annotations
 
 import math
-from typing import Any, Mapping
+from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
-from ..physics import axisymmetric as ax
-from ..physics.axisymmetric import PRINCIPAL, STRESS
-from ..physics.axisymmetric.profiles import (displacement_ratio, force_ratio, radius_at_force, slip_of_displacement,
-                                             slip_ratio)
+from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
 from .base import ARRAY, STR, Parameter, Scenario, Variable, table_step_problem
+
+if TYPE_CHECKING:
+    from ..physics.axisymmetric import Profile
 
 REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient of hydrostatic pressure "
              "in the contact plane of axisymmetric bodies under normal and tangential loading, "
@@ -183,10 +185,11 @@ def _f(p, key: str) -> np.ndarray:
     return np.asarray(p[key], dtype=float)
 
 
-def make_profile(kind: str, p: Mapping[str, Any], physical: bool) -> ax.Profile:
+def make_profile(kind: str, p: Mapping[str, Any], physical: bool) -> Profile:
     """The physics profile of a recipe (``kind`` a profile kind of ``physics.axisymmetric``).  In
     normalised mode the geometry is the unit one: lengths are in units of a and stresses in units
     of p_m, which the profile's scale cancels from."""
+    from ..physics import axisymmetric as ax
     if kind == "cone":
         return ax.cone(math.tan(p["theta"]) if physical else 1.0)
     if kind == "paraboloid":
@@ -211,13 +214,15 @@ def punch_depth(p: Mapping[str, Any]) -> np.ndarray:
     return _f(p, "delta")
 
 
-def scales(p: Mapping[str, Any], physical: bool, a, profile: ax.Profile) -> tuple:
+def scales(p: Mapping[str, Any], physical: bool, a, profile: Profile) -> tuple:
     """The normalisation, as the (stress, dp/dz) factors from the physics' values per E* to the
     variables' units: (E*, E*) in physical mode (Pa, Pa/m); (1/p_m, a/p_m) normalised, p_m per E*."""
     if physical:
         e_star = effective_modulus(p)
         return e_star, e_star
-    pm = ax.mean_pressure(a, profile)
+    from ..physics.axisymmetric import mean_pressure
+
+    pm = mean_pressure(a, profile)
     return 1.0 / pm, a / pm
 
 
@@ -225,10 +230,13 @@ def scales(p: Mapping[str, Any], physical: bool, a, profile: ax.Profile) -> tupl
 CONTACT = ("contact_radius", "delta", "mean_pressure", "normal_force")
 
 
-def contact(names, p: Mapping[str, Any], profile: ax.Profile, physical: bool) -> tuple[np.ndarray, dict]:
+def contact(names, p: Mapping[str, Any], profile: Profile, physical: bool) -> tuple[np.ndarray, dict]:
     """The contact radius a (physical mode: from delta (A3), or from normal_force by inverting (A4); 1
     normalised, lengths in units of a) and the requested ones of contact_radius, delta, mean_pressure,
     normal_force in the variables' units."""
+    from ..physics import axisymmetric as ax
+    from ..physics.axisymmetric.profiles import radius_at_force
+
     if not physical:
         a = np.float64(1.0)
     elif "normal_force" in p:
@@ -248,9 +256,11 @@ def contact(names, p: Mapping[str, Any], profile: ax.Profile, physical: bool) ->
     return a, out
 
 
-def tangential_load(names, p: Mapping[str, Any], profile: ax.Profile, physical: bool, a) -> tuple:
+def tangential_load(names, p: Mapping[str, Any], profile: Profile, physical: bool, a) -> tuple:
     """ux0 = u_x0/delta for the kernels, from ux0, fx or tangential_force (Cattaneo–Mindlin in the MDR,
     docs/theory/axisymmetric.md (A32)-(A34), (A37)), and the requested ones of ux0, fx, tangential_force."""
+    from ..physics.axisymmetric.profiles import displacement_ratio, force_ratio, slip_of_displacement, slip_ratio
+
     nu, mu = _f(p, "nu"), _f(p, "mu")
     if "ux0" in p:
         ux0 = _f(p, "ux0")
@@ -295,6 +305,8 @@ def _evaluate(kind: str | None):
     """An evaluate(names, params, options) for one profile kind (None: the recipe's `profile`)."""
 
     def evaluate(names, p, options):
+        from ..physics import axisymmetric as ax
+
         physical = options["physical"]
         profile = make_profile(kind or p["profile"], p, physical)
         a, out = contact(names, p, profile, physical)
@@ -323,7 +335,7 @@ def _evaluate(kind: str | None):
     return evaluate
 
 
-def displacement_units(values: dict, profile: ax.Profile, a, physical: bool) -> dict:
+def displacement_units(values: dict, profile: Profile, a, physical: bool) -> dict:
     """The displacements of ``values`` (per delta) in metres in physical mode, unchanged normalised."""
     delta = profile.depth(a) if physical else 1.0
     return {n: values[n] * delta for n in ("u_x", "u_y", "u_z") if n in values}
@@ -332,6 +344,8 @@ def displacement_units(values: dict, profile: ax.Profile, a, physical: bool) -> 
 def peak_values(names, p, options, profile, a, scale, physical) -> dict:
     """The requested peak variables: ``physics.axisymmetric.peaks`` per case, stresses times the
     stress scale, positions divided by a (normalised) or in metres (physical)."""
+    from ..physics import axisymmetric as ax
+
     found = ax.peaks(profile, a=a, nu=_f(p, "nu"), mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"],
                      rtol=options["rtol"])
     length = 1.0 if physical else a
@@ -347,7 +361,8 @@ def peak_values(names, p, options, profile, a, scale, physical) -> dict:
 
 
 def check_profile(values, physical, method):
-    """User messages for the profile parameters and for a method the profile has no route for."""
+    """User messages for the profile parameters and for a method the profile has no route for.  Only a
+    tabulated profile or method 'closed' import the physics (a plain recipe is checked without it)."""
     problems = []
     kind = values.get("profile")
     if kind == "tabulated" and "profile_r" in values and "profile_f" in values:
@@ -357,6 +372,8 @@ def check_profile(values, physical, method):
         step = table_step_problem("profile_r", r)    # before building: a 1e-300 step stalls the table
         if step:
             return [step]
+        from ..physics import axisymmetric as ax
+
         try:
             profile = ax.tabulated(r, f)
         except ValueError as exc:
@@ -385,9 +402,12 @@ def check_profile(values, physical, method):
     if kind == "flat_punch" and "normal_force" in values and swept:
         problems.append(f"{', '.join(swept)} cannot be swept for profile = 'flat_punch' with normal_force: the depth "
                         "F_N/(2 E* radius) scales every field; give one value")
-    if method == "closed" and kind is not None and not ax.has_closed_form(kind, values.get("n")):
-        problems.append(f"method.method = 'closed' has no closed form for profile = {kind!r}; "
-                        "use 'auto' or 'quadrature'")
+    if method == "closed" and kind is not None:
+        from ..physics.axisymmetric.routes import has_closed_form
+
+        if not has_closed_form(kind, values.get("n")):
+            problems.append(f"method.method = 'closed' has no closed form for profile = {kind!r}; "
+                            "use 'auto' or 'quadrature'")
     return problems
 
 
@@ -406,11 +426,13 @@ def check_depth(kind: str | None = None):
     def check(values, physical, method):
         problems = check_profile(values, physical, method) if kind is None else []
         problems += check_load(kind, values, physical)
-        if not np.any(np.asarray(values.get("z", 0.0), dtype=float) > 0.0):
+        if method != "closed" or not np.any(np.asarray(values.get("z", 0.0), dtype=float) > 0.0):
             return problems
+        from ..physics.axisymmetric.routes import has_closed_form, has_interior_closed_form
+
         which = kind or values.get("profile", PROFILE.default)
-        if (method == "closed" and ax.has_closed_form(which, values.get("n"))
-                and not ax.has_interior_closed_form(which, values.get("n"), tangential=_tangential(values))):
+        if (has_closed_form(which, values.get("n"))
+                and not has_interior_closed_form(which, values.get("n"), tangential=_tangential(values))):
             problems.append(f"method.method = 'closed' has no closed form below the surface (z > 0) for "
                             f"{'profile = ' + repr(which) if kind is None else 'the ' + which}; use 'auto' or "
                             "'quadrature', or z = 0")
@@ -422,6 +444,8 @@ def check_depth(kind: str | None = None):
 def _radii_of_force(values, profile, end: float) -> tuple[list[float], str | None]:
     """The contact radii of a tabulated profile under every normal force of the recipe, or why the
     largest force pushes the contact beyond the table."""
+    from ..physics.axisymmetric.profiles import radius_at_force
+
     e_star = np.atleast_1d(values["E"])[:, None] / (1.0 - np.atleast_1d(values["nu"])[None, :] ** 2)
     forces = np.unique(np.atleast_1d(values["normal_force"])[:, None] / e_star.ravel()[None, :])
     reach = float(profile.normal_force(end))
@@ -457,10 +481,12 @@ def _force_limit(kind: str, values, mu: float) -> list[str]:
     if "normal_force" in values:
         least = float(np.min(values["normal_force"]))
     else:
+        from ..physics.axisymmetric import contact_radius
+
         delta = float(np.min(values["delta"]))
         profile = make_profile(kind, {**values, "delta": delta}, True)
         try:
-            least = float(profile.normal_force(ax.contact_radius(profile, delta))) * e_star
+            least = float(profile.normal_force(contact_radius(profile, delta))) * e_star
         except ValueError:          # beyond a tabulated profile: check_profile says so
             return []
     limit = mu * least
@@ -478,6 +504,8 @@ _TENSILE = -1e-9
 def _tensile(profile, radii, physical) -> list[str]:
     """A tabulated profile whose contact pressure would be tensile somewhere (outside the model:
     no adhesion) is refused, with where and how much (``physics.axisymmetric.min_pressure``)."""
+    from ..physics import axisymmetric as ax
+
     for a in radii:
         p, at = ax.min_pressure(profile, a)
         if p < _TENSILE:
@@ -494,6 +522,8 @@ def route_of(kind: str | None = None, default: str = PROFILE.default):
     for the profile ``kind`` (None: the recipe's `profile`, else ``default``)."""
 
     def route(values, method, rtol):
+        from ..physics import axisymmetric as ax
+
         which = kind or values.get("profile", default)
         z, n = values.get("z"), values.get("n")
         tangential = bool(np.any(np.asarray(values.get("mu", 0.0)) > 0.0)
@@ -558,7 +588,7 @@ def _scenario(name, summary, geometry, kind):
         name=name, summary=summary, references=REFERENCE, theory="axisymmetric", parameters=params,
         variables=variables(case, tuple(p.name for p in geometry), DEPTH) + peak_variables(case),
         evaluate=_evaluate(kind),
-        physical_switch="E", methods=ax.METHODS,
+        physical_switch="E", methods=AXISYMMETRIC_METHODS,
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),
         check=check_depth(kind), route=route_of(kind),
     )

@@ -12,14 +12,14 @@ rtol. Defaults: nu = 0.3, k = 0.5, c0 = 1 m (E0 is then the modulus at 1 m depth
 combination E0/c0^k enters), rho = r/a = 0.
 
 This module declares; the numerics are the entry points of ``physics.graded.fields`` (one per
-scenario), and the route table is ``physics.graded.resolve``.
+scenario), and the route table is ``physics.graded.resolve``.  The functions that compute import
+``physics.graded`` when they run: the declarations need only ``physics.names``.
 """
 from __future__ import annotations
 
 import numpy as np
 
-from ..physics import graded as gp
-from ..physics.flags import validity_flag
+from ..physics.names import GRADED_METHODS
 from .base import ARRAY, STR, Parameter, Scenario, Variable, table_step_problem
 
 REFERENCE = ("M. Hess, V. L. Popov, Method of dimensionality reduction in contact mechanics and friction: "
@@ -63,7 +63,8 @@ GEOMETRY = (PROFILE, R, TAN, N, A, PROFILE_R, PROFILE_F)
 MATERIAL = (E0, C0, NU, K)
 GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dimensions
 
-METHODS = ("auto", "closed", "quadrature")
+#: the methods of the route table (physics.graded.routes.METHODS, one definition in physics.names)
+METHODS = GRADED_METHODS
 VALIDITY = dict(dtype="int8", flag_values=(0, 1, 2), flag_meanings=("finite", "unbounded_at_singular_point",
                                                                     "undefined_at_singular_point"), always=True)
 
@@ -82,6 +83,8 @@ def _where(p):
 
 def _indenter(p):
     """The recipe's profile as the physics' description (kind + geometry arrays)."""
+    from ..physics import graded as gp
+
     kind = p["profile"]
     if kind == "tabulated":
         return gp.Indenter.tabulated(p["profile_r"], p["profile_f"])
@@ -156,6 +159,8 @@ def _validity(field_dims, fields, comment):
 
 def _flag(entry, known, flagged, out, p, options, **values):
     """The validity flag of the ``flagged`` fields, evaluating those the block did not request."""
+    from ..physics.flags import validity_flag
+
     missing = [n for n in flagged if n not in out]
     extra = _fields(entry, known, missing, p, options, **values) if missing else {}
     return validity_flag(*({**out, **extra}[n] for n in flagged))
@@ -178,6 +183,8 @@ N_VARS = (
 
 
 def _evaluate_normal(names, p, options):
+    from ..physics import graded as gp
+
     values = dict(**_where(p), k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
     out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, **values)
     if "validity" in names:
@@ -191,6 +198,8 @@ def _check_normal(values, physical, method):
 
 def route(values, method, rtol):
     """Closed forms of the paper for power-law profiles; the MDR quadrature for tabulated ones."""
+    from ..physics import graded as gp
+
     return gp.resolve(values.get("profile", PROFILE.default), method, rtol)
 
 
@@ -233,6 +242,8 @@ AD_VARS = (
 
 
 def _evaluate_adhesive(names, p, options):
+    from ..physics import graded as gp
+
     wanted = list(names)
     if "critical_validity" in names and "critical_radius" not in names:
         wanted.append("critical_radius")        # the flag is read off a_c
@@ -308,6 +319,8 @@ T_VARS = (
 
 def _pair(p):
     """Material pair in the physics' terms: (k, nu, E0, E0_2, nu_2); rigid body 2 is E0_2 = inf."""
+    from ..physics import graded as gp
+
     k = _f(p, "k")
     nu = gp.holl_ratio(k) if p["poisson"] == "holl_ratio" else _f(p, "nu")
     body = p["body2"]
@@ -319,6 +332,8 @@ def _pair(p):
 
 
 def _evaluate_tangential(names, p, options):
+    from ..physics import graded as gp
+
     k, nu, e0, e2, nu2 = _pair(p)
     values = dict(**_where(p), fx=_f(p, "fx"), delta_x=_f(p, "delta_x"), mu=_f(p, "mu"), c0=_f(p, "c0"), k=k,
                   nu=nu, E0=e0, E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
@@ -336,6 +351,8 @@ def _check_tangential(values, physical, method):
     problems = _check_profile(values, method)
     if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
         return problems
+    from ..physics import graded as gp
+
     g = _grid(values, PAIR)
     p = {**g, "poisson": values["poisson"], "body2": values["body2"]}
     k, nu, e0, e2, nu2 = _pair(p)

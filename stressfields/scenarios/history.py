@@ -20,8 +20,7 @@ import dataclasses
 
 import numpy as np
 
-from ..physics import axisymmetric as ax
-from ..physics.axisymmetric import PRINCIPAL, STRESS
+from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
 from .axisymmetric import (A, DELTA, DEPTH, E, MU, N, NORMAL_FORCE, NU, PROFILE_F, PROFILE_R, R, REFERENCE,
                            THETA, X, Y, Z, check_depth, contact, displacement_units, effective_modulus, make_profile,
                            route_of, scales, surface_point, variables)
@@ -90,6 +89,8 @@ def _history_variables() -> tuple[Variable, ...]:
 
 def evaluate(names, p, options):
     """Recipe values -> profile -> ``physics.axisymmetric.history_fields`` -> the variables' units."""
+    from ..physics import axisymmetric as ax     # when computing: the declarations need only physics.names
+
     physical = options["physical"]
     profile = make_profile(p["profile"], p, physical)
     a, out = contact(names, p, profile, physical)
@@ -168,7 +169,7 @@ AXISYMMETRIC_HISTORY = Scenario(
     physical_switch="E",
     conventions=("tension positive, z points into the body, p_h = -trace(sigma)/3, tangential traction on the "
                  "half-space along +x for u_x0 > 0, F_x the force on the half-space along +x"),
-    methods=ax.METHODS,
+    methods=AXISYMMETRIC_METHODS,
     default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "region") + LOADS,
     check=_check, complete=_complete, route=_route,
 )

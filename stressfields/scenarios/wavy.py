@@ -29,7 +29,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from ..physics import wavy as wv
+from ..physics.names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS
 from .base import ARRAY, INT, STR, Options, Parameter, Scenario, Variable
 
 REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy surface with an elastic "
@@ -149,6 +149,8 @@ def evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options) -> di
 
 def _evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options, periodic: bool) -> dict[str, np.ndarray]:
     """One domain: recipe values -> wv.fields (normalised), then the scales p*, Delta_1, a (physical mode)."""
+    from ..physics import wavy as wv     # when computing: the declarations need only physics.names
+
     amps, wns = np.asarray(p["amplitudes"], dtype=float), np.asarray(p["wavenumbers"], dtype=float)
     a = np.asarray(p["a"], dtype=float)
     if options["physical"]:
@@ -190,10 +192,17 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
         problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
     domain = values.get("domain")
-    if method in wv.APPROXIMATE and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
+    if method in WAVY_APPROXIMATE_METHODS and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
         problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "
                         f"it needs domain = 'nonperiodic', got domain = {_show(domain)}")
     return problems
+
+
+def _route(values: Mapping[str, Any], method: str, rtol: float) -> tuple[str, str]:
+    """The route table's (route, accuracy) of the method, whatever the values (``physics.wavy.resolve``)."""
+    from ..physics.wavy import resolve
+
+    return resolve(method, rtol)
 
 
 def _show(v):
@@ -209,8 +218,8 @@ WAVY = Scenario(
     summary="Rigid multisinusoidal wavy surface (periodic or single indenter) on an elastic half-plane in "
             "continuous contact: pressure, displacement, mean and peak pressure, validity of the contact model",
     references=REFERENCE, theory="wavy", parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
-    physical_switch="E", methods=wv.METHODS, check=check,
+    physical_switch="E", methods=WAVY_METHODS, check=check,
     conventions="plane strain, frictionless; pressure positive in compression; u_z positive into the body",
-    route=lambda values, method, rtol: wv.resolve(method, rtol),
+    route=_route,
 )
 SCENARIOS: tuple = (WAVY,)

@@ -28,6 +28,9 @@ import numpy as np
 
 from ..flags import validity_flag
 from ..invariants import principal_stresses, singular_limits, von_mises
+# the stress components and principal stresses are defined in ``physics.names``: the scenario
+# declarations read them without importing the kernels
+from ..names import PRINCIPAL, STRESS
 from . import history as hist
 from .displacement import NAMES as DISPLACEMENTS
 from .displacement import displacements, has_displacement_closed_form, tangential_displacements
@@ -42,8 +45,6 @@ __all__ = ["STRESS", "PRINCIPAL", "INVARIANTS", "FIELDS", "HISTORY_LOADS", "HIST
 
 #: validity code of a point below the surface that the 1-D routes do not resolve
 UNRESOLVED = 3
-STRESS = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz")
-PRINCIPAL = ("sigma_1", "sigma_2", "sigma_3")
 #: the invariants of the stress tensor: von Mises (A60), principal stresses, tau_max = (sigma_1 - sigma_3)/2
 INVARIANTS = ("von_mises",) + PRINCIPAL + ("tau_max",)
 #: fields of a point (they need x and y, and z below the surface)

@@ -41,13 +41,16 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..names import AXISYMMETRIC_METHODS
+
 __all__ = ["METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
            "power_law_family", "has_closed_form", "has_interior_closed_form", "resolve", "resolve_interior",
            "INTERIOR_TANGENTIAL_CLOSED_KINDS", "has_interior_tangential_closed_form",
            "TANGENTIAL_TIP_RTOL", "resolve_depth", "tangential_floor"]
 
-#: every method the family offers, the default first
-METHODS: tuple[str, ...] = ("auto", "closed", "quadrature")
+#: every method the family offers, the default first (defined in ``physics.names``, which the scenario
+#: declarations read without importing the kernels)
+METHODS: tuple[str, ...] = AXISYMMETRIC_METHODS
 #: profile kinds whose every member has closed forms
 CLOSED_KINDS: tuple[str, ...] = ("cone", "paraboloid", "flat_punch")
 #: power-law exponents n with closed forms, and the closed-form family each one is

@@ -6,8 +6,9 @@ strings are written into every output file (``stressfields_method``, ``stressfie
 """
 from __future__ import annotations
 
+from ..names import GRADED_METHODS as METHODS  # one definition, read by the scenario declarations
+
 KINDS = ("parabolic", "conical", "power_law", "tabulated")
-METHODS = ("auto", "closed", "quadrature")
 
 #: closed forms of the paper for f = A r^n (docs/theory/graded.md (G15)-(G37))
 CLOSED = "closed form (Tables 1-3)"

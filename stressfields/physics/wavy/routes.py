@@ -19,18 +19,19 @@ from typing import Callable
 
 import numpy as np
 
+from ..names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
 from .api import approximate_pressure_eq18, approximate_pressure_eq20
 
 #: the paper's approximate pressures (non-periodic, docs/theory/wavy.md (W29)): method name -> kernel
 #: kernel(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics) -> p/p*
-APPROXIMATE: dict[str, Callable[..., np.ndarray]] = {
-    "approximate_eq18": approximate_pressure_eq18,
-    "approximate_eq20": approximate_pressure_eq20,
-}
+#: (the method names are defined in ``physics.names``, which the scenario declarations read without
+#: importing the kernels)
+APPROXIMATE: dict[str, Callable[..., np.ndarray]] = dict(
+    zip(WAVY_APPROXIMATE_METHODS, (approximate_pressure_eq18, approximate_pressure_eq20), strict=True))
 #: the exact methods: the default first
-SERIES_METHODS: tuple[str, ...] = ("auto", "series")
+SERIES_METHODS: tuple[str, ...] = WAVY_SERIES_METHODS
 #: every method the family offers, in the order a recipe lists them
-METHODS: tuple[str, ...] = (*SERIES_METHODS, *APPROXIMATE)
+METHODS: tuple[str, ...] = WAVY_METHODS
 
 _SERIES_ROUTE = ("closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or Bessel series "
                  "(non-periodic, eq. 14), length from rtol")
