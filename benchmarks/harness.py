@@ -439,12 +439,19 @@ def _tabulated_rates(repeats: int) -> dict:
     return out
 
 
+def _sibling(name: str):
+    """A module of this directory (the harness is loaded by path from `stressfields bench`)."""
+    import importlib
+
+    if str(Path(__file__).parent) not in sys.path:
+        sys.path.insert(0, str(Path(__file__).parent))
+    return importlib.import_module(name)
+
+
 def _whole_process(cfg: Config) -> dict:
     """Fresh-process runs against the hand loop (benchmarks/process.py), fixed costs, the first
     call of a 512^2 Hertz-Mindlin case, and this machine's disk and SHA-256 rates."""
-    if str(Path(__file__).parent) not in sys.path:      # loaded by path from `stressfields bench`
-        sys.path.insert(0, str(Path(__file__).parent))
-    import process
+    process = _sibling("process")
 
     sizes = cfg.process_n + ((10_000,) if os.environ.get("STRESSFIELDS_BENCH_BIG") == "1" else ())
     out = {}
@@ -476,6 +483,9 @@ def measure(cfg: Config, peers: bool = False) -> tuple[xr.Dataset, dict]:
         peer_rows, peer_l2 = _peers(cfg, solve)
         for problem, rows in peer_rows.items():
             cases[problem].update(rows)
+    if peers:       # below the surface: tamaas' FFT volume operators, ContactMechanics' Hertz forms
+        for case, rows in _sibling("peers_interior").peer_interior_rows(cfg).items():
+            cases.setdefault(case, {}).update(rows)
     if cfg.throughput:
         tp.update(_pipeline_vs_hand(cfg.pipeline_n, min(cfg.repeats, 3)))
         tp.update(_quadrature_rate(cfg.repeats))
@@ -609,7 +619,8 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
                 sub = ds.sel({"method": m, "case": case, "order": o})
                 t, e = float(sub.time_per_point), float(sub.max_error)
                 if np.isfinite(t):
-                    label = "-" if o == 0 else (f"{o:.0f}^2" if m == PEER else f"{o:g}")
+                    label = "-" if o == 0 else (f"{o:.0f}^2" if m == PEER else f"{o:.0f}^2 x 16 layers"
+                                                if m.startswith("tamaas") else f"{o:g}")
                     lines.append(f"| {case} | {m} | {label} | {t:.3g} | {e:.2g} |")
     if "peer_pressure_l2_error" in a:
         lines += ["", f"The peer's max error sits at the contact edge, where a grid resolves the square-root "
