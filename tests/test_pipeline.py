@@ -134,7 +134,7 @@ def test_singular_points_are_flagged_never_silent():
     np.testing.assert_array_equal(ds.validity.values != 0, nonfinite)
     tip = ds.sel(x=0.0)
     assert np.all(tip.validity.values > 0)
-    assert ds.validity.attrs["flag_meanings"].split()[0] == "finite"
+    assert ds.validity.attrs["flag_meanings"].split()[0] == "within_stated_accuracy"
 
 
 def test_region_flags():

@@ -151,8 +151,8 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                           if deep else None)),
         Variable("validity", f"validity of the field values at the {'point' if deep else 'surface point'}",
                  dtype="int8", dims=everything, flag_values=(0, 1, 2, 3),
-                 flag_meanings=("finite", "unbounded_at_singular_point", "undefined_direction_dependent_limit",
-                                "not_resolved_below_the_surface"),
+                 flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                                "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
                  comment=f"1: a value is +-inf where the exact field is unbounded ({singular}"
                          + ("; all at z = 0" if deep else "") + "); 2: a value is NaN where "
                          "the exact limit depends on the direction of approach (r = 0 under gross slip of a "
@@ -570,8 +570,8 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
     out.append(Variable(
         "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
         flag_values=(0, 1, 2, 4),
-        flag_meanings=("finite", "unbounded_at_singular_point", "undefined_direction_dependent_limit",
-                       "search_not_converged"),
+        flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                       "undefined_direction_dependent_limit", "search_not_converged"),
         comment="0: the peaks are within the stated accuracy; 1: the field is unbounded at a surface singular "
                 "point (e.g. cone tip, flat-punch edge): the peaks are +inf there, depth 0; 2: the field is NaN at "
                 "a surface singular point (a direction-dependent limit): the peaks are NaN; 4: the refinement "

@@ -65,8 +65,8 @@ GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dim
 
 #: the methods of the route table (physics.graded.routes.METHODS, one definition in physics.names)
 METHODS = GRADED_METHODS
-VALIDITY = dict(dtype="int8", flag_values=(0, 1, 2), flag_meanings=("finite", "unbounded_at_singular_point",
-                                                                    "undefined_at_singular_point"), always=True)
+VALIDITY = dict(dtype="int8", flag_values=(0, 1, 2), always=True,
+                flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point", "undefined_at_singular_point"))
 
 
 def _f(p, key):
