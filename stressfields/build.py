@@ -24,6 +24,16 @@ from .scenarios.base import ARRAY
 
 #: points per chunk: the measured sweet spot of threaded dask on this kind of machine (~8 MB)
 TARGET_CHUNK_POINTS = 1_000_000
+#: a sweep of at least this many points gets at least MIN_TASKS chunks where it can, so that each of
+#: two cores has work and a second task to take while the first one's block is being written
+PARALLEL_ABOVE = 200_000
+MIN_TASKS = 4
+#: families (theory pages) whose values depend on how a sweep is cut into blocks, and so keep the
+#: ~1e6-point chunking that fixes their content hash: the wavy route decides per block whether to
+#: substitute the non-periodic series, from the number of points the block has in a contact
+#: (`physics.wavy.api.SUBSTITUTE_MIN_POINTS`), and its per-case series differ in the last bits
+#: with the set of contact widths in a block
+BLOCK_DEPENDENT = frozenset({"wavy"})
 
 
 def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
@@ -31,7 +41,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
     physical = recipe.physical
     sizes = recipe.shape
     requested = {**recipe.chunks, **(chunks or {})}
-    chunking = default_chunks(sizes, requested)
+    chunking = default_chunks(sizes, requested, spread=scen.theory not in BLOCK_DEPENDENT)
     check_chunks(sizes, requested, chunking)
 
     coords: dict[str, xr.Variable] = {}
@@ -81,18 +91,33 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
 def check_chunks(sizes: dict[str, int], requested: dict[str, int], chunking: dict[str, int]) -> None:
     """Refuse, before any graph is built, a requested chunking of more than MAX_CHUNKS chunks.
 
-    The default chunking (~1e6 points a chunk) is never refused: it is the least a sweep needs.
+    The default chunking (`default_chunks`) is never refused: it is the least a sweep needs.
     """
     if not requested or chunk_problems(sizes, chunking, "") == [] or chunking == default_chunks(sizes, {}):
         return
     raise RecipeError(chunk_problems(sizes, chunking, "chunks"), "the chunking")
 
 
-def default_chunks(sizes: dict[str, int], requested: dict[str, int]) -> dict[str, int]:
-    """Chunk sizes per dimension: the requested ones, the rest filled towards ~1e6 points.
+def default_chunks(sizes: dict[str, int], requested: dict[str, int], spread: bool = True) -> dict[str, int]:
+    """Chunk sizes per dimension: the requested ones, the rest filled towards ~1e6 points a chunk
+    (TARGET_CHUNK_POINTS). Trailing (spatial) dimensions are kept whole first, so each line along x is
+    one chunk.
 
-    Trailing (spatial) dimensions are kept whole first, so each line along x is one chunk.
+    A sweep of PARALLEL_ABOVE points or more that this leaves with fewer than MIN_TASKS chunks (up to
+    ~4e6 points) has its trailing dimensions cut further (`_spread`): a 1e6-point grid is four tasks of
+    2.5e5 points, not one that leaves the second core idle. Only the spatial dimensions are cut there,
+    where fields are evaluated point by point; the sweep dimensions keep the blocks they had, so the
+    per-case quantities over them (stick radii, series tables, peaks) are computed from the same blocks
+    as before and keep their bits. ``spread=False`` (families in BLOCK_DEPENDENT) keeps the ~1e6 rule.
     """
+    out = _filled(sizes, requested)
+    total = int(np.prod(list(sizes.values()), dtype=np.int64)) if sizes else 1
+    if spread and total >= PARALLEL_ABOVE and _count(sizes, out) < MIN_TASKS:
+        out = _spread(sizes, requested, out)
+    return out
+
+
+def _filled(sizes: dict[str, int], requested: dict[str, int]) -> dict[str, int]:
     out: dict[str, int] = {}
     budget = TARGET_CHUNK_POINTS
     for dim in sizes:
@@ -106,6 +131,26 @@ def default_chunks(sizes: dict[str, int], requested: dict[str, int]) -> dict[str
         out[dim] = max(1, min(sizes[dim], budget))
         budget = max(1, budget // out[dim])
     return {dim: out[dim] for dim in sizes}
+
+
+def _count(sizes: dict[str, int], chunking: dict[str, int]) -> int:
+    return int(np.prod([-(-sizes[d] // chunking[d]) for d in sizes], dtype=np.int64))
+
+
+def _spread(sizes: dict[str, int], requested: dict[str, int], chunking: dict[str, int]) -> dict[str, int]:
+    """Cut the trailing dimensions not requested, last first, into pieces of equal size until there
+    are MIN_TASKS chunks (or nothing is left to cut)."""
+    out = dict(chunking)
+    for dim in reversed(list(sizes)):
+        count = _count(sizes, out)
+        if count >= MIN_TASKS:
+            break
+        if dim in requested:
+            continue
+        pieces = -(-sizes[dim] // out[dim])
+        wanted = min(sizes[dim], pieces * -(-MIN_TASKS // count))
+        out[dim] = -(-sizes[dim] // wanted)
+    return out
 
 
 def _groups(recipe: Recipe) -> dict[tuple[str, ...], list[str]]:

@@ -24,7 +24,7 @@ import numpy as np
 import xarray as xr
 
 from .errors import OutputError
-from .hashing import stamp
+from .hashing import Keeper, stamp
 
 #: host and process that own a temporary: a short hash of the host name (a shared disk may be written
 #: from several machines, whose process ids mean nothing here) and the process id
@@ -125,22 +125,35 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     """Compute ``ds`` chunk by chunk and write it to ``target`` atomically.
 
     The file appears under its final name only once it is complete, with its content hash (see
-    `hashing`) stored as a global attribute; the caller has checked the target (`writers.check_target`);
+    `hashing`) stored as a global attribute, computed from the values kept in memory as they were
+    written where they fit `hashing.KEEP_BYTES` (`hashing.Keeper`), else read back (as are values
+    computed on a cluster); the caller has checked the target (`writers.check_target`);
     without ``overwrite`` a file another run published meanwhile is never replaced (`publish`).
     ``scheduler`` is passed to dask (None: the local threads). ``fill(tmp_path)``, if given, writes
-    the values instead of computing ``ds`` (used to join finished parts).
+    the values instead of computing ``ds`` (used to join finished parts) and returns the content hash
+    of the file it filled, or None to have it read back and hashed.
     """
     target = Path(target)
     parent = target.parent if str(target.parent) else Path(".")
     clean_stale(target)
     tmp = str(temporary(target, ".tmp"))
+    flushing = None
     try:
-        delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds), compute=False)
+        encoding = _encoding(ds)
+        keeper = Keeper() if fill is None and local(scheduler) else None
+        if keeper is not None:
+            ds = keeper.wrap(ds, encoding)
+        delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding, compute=False)
+        digest = None
         if fill is None:
             compute(delayed, progress=progress, scheduler=scheduler)
         else:
-            fill(tmp)   # the values come from elsewhere (finished parts): the layout is written above
-        stamp(tmp)
+            # the values come from elsewhere (finished parts): the layout is written above; `fill`
+            # may return the content hash of what it wrote, computed from the values as they passed
+            digest = fill(tmp)
+        flushing = _flush_soon(tmp)       # the disk takes the values while they are hashed from memory
+        stamp(tmp, keeper.values() if keeper is not None else None, digest=digest)
+        flushing.result()
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
         os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
@@ -159,7 +172,43 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     except BaseException:
         _remove(tmp)
         raise
+    finally:
+        if flushing is not None:
+            flushing.cancel()
     return target
+
+
+def _flush_soon(path: str):
+    """fsync ``path`` in a thread: the file's values reach the disk while the main thread hashes them,
+    from memory or read back from the page cache (both release the GIL). Measured after writing a
+    1e7-point cone file of eleven fields (0.9 GB): fsync alone 0.27 s; hashing from memory 0.50 s
+    alone and 0.50 s with the fsync beside it. The caller fsyncs again after storing the hash."""
+    pool = ThreadPoolExecutor(1)
+
+    def flush():
+        fd = os.open(path, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+    try:
+        return pool.submit(flush)
+    finally:
+        pool.shutdown(wait=False)
+
+
+def local(scheduler) -> bool:
+    """Whether tasks run in this process (threads or synchronously), where a kept block is visible to
+    the writer: not on a cluster, not in other processes."""
+    from dask.base import get_scheduler
+    from dask.local import get_sync
+    from dask.threaded import get as threaded_get
+
+    if _is_client(scheduler):
+        return False
+    if scheduler is None:
+        return get_scheduler() in (None, threaded_get, get_sync)
+    return scheduler in ("threads", "threading", "sync", "synchronous", "single-threaded")
 
 
 def read(path, raw: bool = False, **kw) -> xr.Dataset:

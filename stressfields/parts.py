@@ -22,7 +22,8 @@ import numpy as np
 import xarray as xr
 
 from .errors import OutputError
-from .hashing import file_hash, slabs
+from .hashing import content_hash, file_hash, slabs, stored_hash
+from .netcdf import read as netcdf_read
 from .writers import Format, parts_dir
 
 MANIFEST = "manifest.json"
@@ -35,7 +36,7 @@ def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool 
     dim = next(iter(ds.dims), None)
     if dim is None or ds.chunks.get(dim) is None:
         return fmt.write(ds, target, progress=progress, scheduler=scheduler, overwrite=overwrite)
-    edges = np.concatenate([[0], np.cumsum(ds.chunks[dim])]).astype(int).tolist()
+    edges = part_edges(ds, dim)
     plan = {"recipe_sha256": ds.attrs.get("stressfields_recipe_sha256"), "dim": dim, "edges": edges}
     folder = parts_dir(target)
     manifest = _start(folder, plan)
@@ -48,11 +49,32 @@ def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool 
         if progress:
             print(f"  part {i + 1}/{len(names)}: {dim}[{lo}:{hi}]", file=sys.stderr)
         fmt.write(ds.isel({dim: slice(lo, hi)}), path, progress=progress, scheduler=scheduler, overwrite=True)
-        manifest["parts"][name] = file_hash(path)[1]
+        # the hash the write just computed from memory and stored: hashing the part again would
+        # read it back for nothing (it is read back and verified on resume, `_intact`)
+        manifest["parts"][name] = stored_hash(path)
         _dump(folder, manifest)
     _join(folder, names, dim, edges, ds, target, fmt, overwrite)
     shutil.rmtree(folder)
     return target
+
+
+def part_edges(ds: xr.Dataset, dim: str) -> list[int]:
+    """Part boundaries along ``dim``: at chunk boundaries, one row of chunks a part, or, where a row is
+    large (PARALLEL_ABOVE points or more), as many rows as give a part MIN_TASKS chunks: a part's
+    chunks are its tasks, and a part of one task would leave every other core idle while it is
+    computed (a 1e8-point grid of 1e6-point rows: 25 parts of four tasks, not 100 of one)."""
+    from .build import MIN_TASKS, PARALLEL_ABOVE
+
+    rows = [int(n) for n in ds.chunks[dim]]
+    others = [d for d in ds.chunks if d != dim]
+    per_row = int(np.prod([len(ds.chunks[d]) for d in others]))
+    row_points = max(rows) * int(np.prod([ds.sizes[d] for d in others]))
+    group = 1 if row_points < PARALLEL_ABOVE else max(1, -(-MIN_TASKS // per_row))
+    ends = np.cumsum(rows)
+    cuts = ends[group - 1::group].tolist()
+    if not cuts or cuts[-1] != ends[-1]:
+        cuts.append(int(ends[-1]))
+    return [0] + [int(c) for c in cuts]
 
 
 def part_names(edges: list[int]) -> list[str]:
@@ -102,22 +124,74 @@ def _dump(folder: Path, manifest: dict) -> None:
 
 def _join(folder: Path, names: list[str], dim: str, edges: list[int], template: xr.Dataset, target: Path,
           fmt: Format, overwrite: bool) -> None:
-    """Copy the parts into one file, one part at a time, so memory stays at the size of a part."""
+    """Copy the parts into one file, a slab at a time, so memory stays at the size of a slab. The
+    variables that start with the parts' dimension (the fields) are copied variable by variable, in the
+    order of the content hash, and hashed as they pass: the joined file is not read back. The parts
+    were verified before (`_intact`) or hashed as written."""
     import netCDF4
 
-    def fill(path: str) -> None:
+    def fill(path: str) -> str | None:
+        streamed = _streamed(template, dim)
+        if not streamed or any(var.nbytes > _HELD_BYTES for name, var in template.variables.items()
+                               if name not in streamed):
+            streamed = []       # a large variable the stream does not cover: copy all, read back to hash
         with netCDF4.Dataset(path, "a") as out:
             for i, name in enumerate(names):
                 with netCDF4.Dataset(folder / name) as part:
                     for var, values in part.variables.items():
+                        if var in streamed:
+                            continue
                         if dim in values.dimensions:
                             offset = [0] * values.ndim
                             offset[values.dimensions.index(dim)] = edges[i]
                             _copy(values, out[var], offset)
                         elif i == 0:
                             _copy(values, out[var], [0] * values.ndim)
+        if not streamed:
+            return None
+        with netcdf_read(path, raw=True) as raw:
+            # heads of every variable, values of the small ones: in memory before the file is reopened
+            # for writing (HDF5 opens a file once per process)
+            held = raw.drop_vars(streamed).load()
+            heads = {name: raw.variables[name] for name in streamed}
+            attrs = dict(raw.attrs)
+        hashed = xr.Dataset(attrs=attrs)
+        hashed = hashed.assign_coords(held.variables).assign(heads)
+        with netCDF4.Dataset(path, "a") as out:
+            out.set_auto_maskandscale(False)
+            values = {var: (lambda var=var: _stream_copy(folder, names, edges, var, out[var]))
+                      for var in streamed}
+            return content_hash(hashed, values=values)
 
     fmt.write(template, target, fill=fill, overwrite=overwrite)
+
+
+#: the largest variable the join holds in memory to hash it (the others start with the parts' dimension)
+_HELD_BYTES = 64 * 2 ** 20
+
+
+def _streamed(template: xr.Dataset, dim: str) -> list[str]:
+    """The numeric data variables whose first dimension is ``dim``: their values in C order are the
+    parts' values one part after the other."""
+    return [str(name) for name, var in template.data_vars.items()
+            if var.dims and var.dims[0] == dim and var.dtype.kind in "biuf"]
+
+
+def _stream_copy(folder: Path, names: list[str], edges: list[int], var: str, dst, limit: int = 16 * 2 ** 20):
+    """Copy ``var`` from every part into ``dst`` (its rows edges[i]:edges[i+1]), yielding each slab as
+    stored (no masking), in C order."""
+    import netCDF4
+
+    for name, lo in zip(names, edges[:-1]):
+        with netCDF4.Dataset(folder / name) as part:
+            src = part[var]
+            src.set_auto_maskandscale(False)
+            for index in slabs(src.shape, src.dtype.itemsize, limit):
+                # integer indices as length-1 slices: the slab keeps its rank, so it lands unchanged
+                index = tuple(i if isinstance(i, slice) else slice(i, i + 1) for i in index)
+                values = np.asarray(src[index])
+                dst[(slice(lo + index[0].start, lo + index[0].stop),) + index[1:]] = values
+                yield values
 
 
 def _copy(src, dst, offset: list[int], limit: int = 64 * 2 ** 20) -> None:

@@ -1,0 +1,275 @@
+"""The write path: values hashed from memory as they are written (the same digest as reading the file
+back), default chunking that keeps both cores busy, parts written and hashed once."""
+import dataclasses
+import json
+
+import numpy as np
+import pytest
+
+import stressfields as sf
+from stressfields import hashing
+from stressfields.build import default_chunks
+from stressfields.hashing import Keeper, file_hash
+
+CONE = {"scenario": "conical",
+        "parameters": {"nu": 0.3, "ux0": 0.25, "mu": [0.0, 0.3, 0.4], "y": [0.0, 0.3, 0.6],
+                       "x": {"start": -1.5, "stop": 1.5, "num": 31}}}
+HERTZ = {"scenario": "parabolic",
+         "parameters": {"mu": [0.2, 0.3], "ux0": 0.25, "y": {"start": -1.5, "stop": 1.5, "num": 9},
+                        "x": {"start": -1.5, "stop": 1.5, "num": 13}},
+         "output": {"variables": ["von_mises", "sigma_xx", "dpdz"]}}
+
+
+@pytest.fixture
+def kept(monkeypatch):
+    """The names each write hashed from memory."""
+    seen: list[set] = []
+    values = Keeper.values
+
+    def spy(self):
+        out = values(self)
+        seen.append(set(out))
+        return out
+    monkeypatch.setattr(Keeper, "values", spy)
+    return seen
+
+
+def _dask_numeric(ds):
+    return {n for n, v in ds.variables.items() if hasattr(v.data, "map_blocks") and v.ndim and v.dtype.kind in "biuf"}
+
+
+@pytest.mark.parametrize("recipe", [CONE, HERTZ], ids=["cone", "hertz"])
+@pytest.mark.parametrize("chunks", [None, {"x": 7, "y": 1}, {"mu": 1}, {"y": 2, "x": 10}],
+                         ids=["default", "x7y1", "mu1", "y2x10"])
+@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
+@pytest.mark.parametrize("scheduler", [None, "synchronous"], ids=["threads", "sync"])
+def test_hash_from_memory_equals_the_read_back_hash(tmp_path, monkeypatch, kept, recipe, chunks, suffix,
+                                                    scheduler):
+    ds = sf.generate(recipe, chunks=chunks)
+    target = sf.write(ds, tmp_path / f"a{suffix}", scheduler=scheduler)
+    assert kept[-1] == _dask_numeric(sf.writers.prepare(ds)) != set()     # every field came from memory
+    digest, stored = file_hash(target)                                      # read back from the file
+    assert digest == stored
+    # the other route: nothing kept, every value read back from the written file before stamping
+    monkeypatch.setattr(hashing, "keep_budget", lambda: 0)
+    again = sf.write(ds, tmp_path / f"b{suffix}", scheduler=scheduler)
+    assert kept[-1] == set() and file_hash(again) == (digest, digest)
+
+
+@pytest.mark.parametrize("options", [{"nonfinite": "fill"}, {"dtype": "float32", "nonfinite": "nan"},
+                                     {"compression": 4}])
+@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
+def test_hash_from_memory_sees_the_stored_encoding(tmp_path, kept, options, suffix):
+    """Values are hashed as stored: +-inf and NaN as the fill value, float32, compressed alike."""
+    ds = sf.generate({**CONE, "parameters": {**CONE["parameters"], "x": [-1.0, 0.0, 0.5, 1.0, 2.0]}})
+    target = sf.write(ds, tmp_path / f"a{suffix}", **options)
+    assert kept[-1]
+    digest, stored = file_hash(target)
+    assert digest == stored
+
+
+def test_a_budget_keeps_some_variables_and_reads_the_rest_back(tmp_path, monkeypatch, kept):
+    ds = sf.generate(CONE, chunks={"mu": 1})
+    whole = file_hash(sf.write(ds, tmp_path / "whole.nc"))
+    one = 3 * 3 * 31 * 8                              # bytes of one float field
+    monkeypatch.setattr(hashing, "keep_budget", lambda: 2 * one + 10)
+    part = sf.write(ds, tmp_path / "part.nc")
+    assert 1 <= len(kept[-1]) < len(kept[0])          # some from memory, the others read back
+    assert file_hash(part) == whole
+
+
+@pytest.mark.parametrize("shape,chunks", [((7,), (3,)), ((4, 5), (1, 5)), ((4, 5), (2, 5)), ((4, 5), (4, 2)),
+                                          ((3, 4, 5), (1, 1, 2)), ((3, 4, 5), (2, 3, 4)), ((3, 4, 5), (3, 4, 5)),
+                                          ((2, 3, 4, 5), (1, 3, 2, 5))])
+def test_kept_blocks_come_out_in_c_order(shape, chunks):
+    """Against the array's own C-order bytes: blocks in grid order where that is C order, else bands."""
+    import dask.array as da
+    import xarray as xr
+
+    a = np.random.default_rng(1).standard_normal(shape)
+    ds = xr.Dataset({"v": (tuple(f"d{i}" for i in range(len(shape))), da.from_array(a, chunks=chunks))})
+    keeper = Keeper(budget=10 ** 9)
+    keeper.wrap(ds).compute(scheduler="threads")
+    pieces = list(keeper.values()["v"]())
+    assert b"".join(p.tobytes() for p in pieces) == a.tobytes()
+    assert keeper.blocks == {}            # released as handed out
+
+
+@pytest.mark.parametrize("sizes", [{"x": 200_000}, {"y": 447, "x": 448}, {"y": 1000, "x": 1000},
+                                   {"mu": 2, "x": 500_000}, {"mu": 3, "x": 100_000}, {"y": 3162, "x": 3162},
+                                   {"y": 1500, "x": 1500}, {"nu": 12, "mu": 3, "y": 101, "x": 121},
+                                   {"a": 5, "b": 7, "x": 6000}, {"y": 10_000, "x": 10_000},
+                                   {"point": 1_000_003}, {"y": 300_000, "x": 2}])
+def test_default_chunks_give_every_core_two_tasks(sizes):
+    chunking = default_chunks(sizes, {})
+    count = int(np.prod([-(-sizes[d] // chunking[d]) for d in sizes]))
+    points = int(np.prod(list(chunking.values())))
+    total = int(np.prod(list(sizes.values())))
+    assert count >= 4
+    assert points <= 1_000_000
+    if total >= 1_000_000:
+        assert points >= 250_000                # per-task overhead stays small
+
+
+@pytest.mark.parametrize("sizes", [{"nu": 12, "mu": 3, "y": 101, "x": 121}, {"a": 5, "b": 7, "x": 6000},
+                                   {"mu": 2, "x": 500_000}, {"y": 3162, "x": 3162}])
+def test_only_trailing_dimensions_are_cut_further(sizes):
+    """The sweep dimensions keep the blocks of the ~1e6-point rule (so per-case quantities over them keep
+    their bits); only the trailing ones are cut to reach four tasks."""
+    old = {}
+    budget = 1_000_000
+    for dim in reversed(list(sizes)):            # the rule before: trailing dimensions whole first
+        old[dim] = max(1, min(sizes[dim], budget))
+        budget = max(1, budget // old[dim])
+    new = default_chunks(sizes, {})
+    last = list(sizes)[-1]
+    assert {d: c for d, c in new.items() if d != last} == {d: c for d, c in old.items() if d != last}
+
+
+def test_block_dependent_families_keep_their_chunking_and_the_others_their_bits():
+    """The wavy family's values depend on its blocks (its substitution test counts a block's points):
+    its default chunking stays the ~1e6-point one, and with it its content hash. The others are cut
+    into four tasks from 2e5 points, and every variable is bit for bit that of one chunk."""
+    wavy = {"scenario": "wavy", "parameters": {
+        "domain": "periodic", "amplitudes": [0.5, 0.01], "wavenumbers": [1, 11], "n_harmonics": [1, 2],
+        "a": [0.05, 0.2, 0.3, 0.5, 0.8], "x": {"start": -1.0, "stop": 1.0, "num": 20_000}}}
+    assert all(len(c) == 1 for c in sf.generate(wavy).chunks.values())
+    graded = {"scenario": "graded_tangential", "parameters": {
+        "profile": "parabolic", "R": 0.75, "contact_radius": 1e-3, "mu": 0.5, "E0": 1e9, "poisson": "holl_ratio",
+        "k": [0.0, 0.3, 0.6, 0.9], "delta_x": {"start": 0.0, "stop": 1.4e-6, "num": 60_000}},
+              "output": {"variables": ["force_ratio", "max_tangential_displacement"]}}
+    cone = {**CONE, "parameters": {**CONE["parameters"], "y": {"start": -1, "stop": 1, "num": 30},
+                                   "x": {"start": -1.5, "stop": 1.5, "num": 3000}}}
+    for recipe in (graded, cone):
+        cut = sf.generate(recipe)
+        assert max(int(np.prod([len(c) for c in v.chunks])) for v in cut.data_vars.values() if v.chunks) >= 4
+        one = sf.generate(recipe, chunks={d: -1 for d in cut.chunks}).compute()
+        cut = cut.compute()
+        for name in cut.data_vars:
+            np.testing.assert_array_equal(cut[name].values, one[name].values, err_msg=name)
+
+
+def test_small_sweeps_stay_one_chunk_and_requests_are_kept():
+    assert default_chunks({"y": 300, "x": 600}, {}) == {"y": 300, "x": 600}
+    assert default_chunks({"y": 1000, "x": 1000}, {"y": 10}) == {"y": 10, "x": 1000}
+    ds = sf.generate({**CONE, "parameters": {**CONE["parameters"], "y": {"start": -1, "stop": 1, "num": 100},
+                                             "x": {"start": -1.5, "stop": 1.5, "num": 2001}}})
+    assert len(ds.sigma_xx.chunks[0]) * len(ds.sigma_xx.chunks[1]) * len(ds.sigma_xx.chunks[2]) >= 4
+
+
+def test_parts_are_hashed_once_when_written(tmp_path, monkeypatch):
+    """The manifest takes the hash each part stored while written; no part is read back to hash it."""
+    calls = []
+    real = hashing.file_hash
+    monkeypatch.setattr("stressfields.parts.file_hash", lambda p: calls.append(p) or real(p))
+    ds = sf.generate(CONE, chunks={"mu": 1})
+    target = sf.write(ds, tmp_path / "p.nc", parts=True)
+    assert calls == []
+    assert file_hash(target)[0] == file_hash(sf.write(ds, tmp_path / "whole.nc"))[0]
+    assert not (tmp_path / "p.nc.parts").exists()
+    json.dumps(calls)
+
+
+@pytest.mark.parametrize("limit", [16 * 2 ** 20, 64, 8])
+def test_the_join_hashes_what_it_copies(tmp_path, monkeypatch, limit):
+    """The joined file is hashed from the slabs copied into it; read back, it gives the same digest,
+    and so does an uninterrupted run. Small slab limits cut rows into pieces (integer indices)."""
+    from stressfields import parts
+
+    monkeypatch.setattr(parts._stream_copy, "__defaults__", (limit,))
+    recipe = {**CONE, "parameters": {**CONE["parameters"], "nu": [0.2, 0.3]}}
+    ds = sf.generate(recipe, chunks={"nu": 1})
+    reads = []
+    real = hashing.file_hash
+    monkeypatch.setattr(hashing, "file_hash", lambda p: reads.append(p) or real(p))
+    joined = sf.write(ds, tmp_path / "joined.nc", parts=True, nonfinite="fill")
+    assert reads == []                      # neither the parts nor the joined file were read back to hash
+    monkeypatch.setattr(hashing, "file_hash", real)
+    digest, stored = file_hash(joined)
+    assert digest == stored == file_hash(sf.write(ds, tmp_path / "whole.nc", nonfinite="fill"))[0]
+
+
+def test_large_rows_are_grouped_so_a_part_has_four_tasks():
+    from stressfields.parts import part_edges
+
+    big = sf.writers.prepare(sf.generate({**CONE, "parameters": {
+        **CONE["parameters"], "mu": list(np.linspace(0.1, 0.5, 10)),
+        "y": {"start": -1, "stop": 1, "num": 400}, "x": {"start": -1.5, "stop": 1.5, "num": 500}}},
+        chunks={"mu": 1}))
+    assert part_edges(big, "mu") == [0, 4, 8, 10]            # rows of 2e5 points: four to a part
+    small = sf.writers.prepare(sf.generate(CONE, chunks={"mu": 1}))
+    assert part_edges(small, "mu") == [0, 1, 2, 3]           # small rows: a part each, as before
+
+
+KILLED = """scenario = "conical"
+[parameters]
+mu = { start = 0.1, stop = 0.5, num = 16 }
+nu = 0.3
+ux0 = 0.25
+y = { start = -1.5, stop = 1.5, num = 400 }
+x = { start = -1.5, stop = 1.5, num = 500 }
+[output]
+variables = ["sigma_xx", "von_mises"]
+chunks = { mu = 1 }
+"""
+
+
+def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part(tmp_path, monkeypatch):
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    import netCDF4
+
+    from stressfields import cli
+
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(KILLED)
+    whole, target = tmp_path / "whole.nc", tmp_path / "out.nc"
+    assert cli.main(["run", str(recipe), "-o", str(whole), "-q"]) == 0
+    proc = subprocess.Popen([sys.executable, "-m", "stressfields", "run", str(recipe), "-o", str(target), "-q",
+                             "--parts"], stderr=subprocess.PIPE)
+    manifest = tmp_path / "out.nc.parts" / "manifest.json"
+    deadline = time.monotonic() + 120
+    while time.monotonic() < deadline and proc.poll() is None:
+        if manifest.exists() and len(json.loads(manifest.read_text())["parts"]) >= 2:
+            break
+        time.sleep(0.01)
+    assert proc.poll() is None, "the run finished before it could be killed; make the recipe larger"
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    plan = json.loads(manifest.read_text())
+    assert plan["edges"] == [0, 4, 8, 12, 16] and 2 <= len(plan["parts"]) < 4
+    # a finished part damaged after the kill: readable, one value changed, its stored hash now stale
+    with netCDF4.Dataset(tmp_path / "out.nc.parts" / "part-00001.nc", "a") as nc:
+        nc["von_mises"][0, 5, 7] += 1e-9
+    written = []
+    row = sf.writers.FORMATS["netcdf"]
+
+    def recording(ds, path, **kw):
+        written.append(path.name)
+        return row.write(ds, path, **kw)
+    monkeypatch.setitem(sf.writers.FORMATS, "netcdf", dataclasses.replace(row, write=recording))
+    assert cli.main(["run", str(recipe), "-o", str(target), "-q", "--resume"]) == 0
+    done = set(plan["parts"]) - {"part-00001.nc"}
+    all_parts = {f"part-{i:05d}.nc" for i in range(4)}
+    assert set(written) - {"out.nc"} == all_parts - done          # the damaged part and the missing ones only
+    assert file_hash(target)[0] == file_hash(target)[1] == file_hash(whole)[0]
+    assert not (tmp_path / "out.nc.parts").exists()
+
+
+def test_the_join_reads_back_when_a_large_variable_is_not_streamed(tmp_path, monkeypatch):
+    from stressfields import parts
+
+    monkeypatch.setattr(parts, "_HELD_BYTES", 0)
+    ds = sf.generate(CONE, chunks={"mu": 1})
+    reads = []
+    real = hashing.file_hash
+    monkeypatch.setattr(hashing, "file_hash", lambda p: reads.append(p) or real(p))
+    joined = sf.write(ds, tmp_path / "joined.nc", parts=True)
+    assert len(reads) == 1 and ".joined.nc." in str(reads[0])      # the joined temporary, read back once
+    monkeypatch.setattr(hashing, "file_hash", real)
+    digest, stored = file_hash(joined)
+    assert digest == stored == file_hash(sf.write(ds, tmp_path / "whole.nc"))[0]
