@@ -12,7 +12,10 @@ Willert, Forsbach & Popov, eqs. (9), (11), (24)-(26) (docs/theory/axisymmetric.m
   sqrt(u - k) just right of a knot k, from the jumps of the spline's third derivative).  Their rules
   break at every knot and grade the nodes towards it (``segment_rule``), and split a segment
   geometrically where a cusp lies just outside it (a knot just below r or c: see ``_knot_groups``),
-  which restores fast convergence.
+  which restores fast convergence.  That costs O(knots) per point; with knots, the integrals take
+  the block route instead (docs/theory/axisymmetric.md (A104)-(A106), end of this module): moments
+  of g', g'' on a dyadic tree precomputed per profile, Chebyshev interpolation of the kernel on
+  blocks away from u = r, the graded rules only on two short ends: O(log knots) per point.
 * Power-law profiles g' = B u^m (m = n - 1 possibly non-integer) behave like t^m at t = 0 after the
   sin substitution; there Gauss–Jacobi rules with that weight make the rest of the integrand smooth,
   and the pressure-gradient integral (11) is taken as the Hadamard finite part (valid for n < 1,
@@ -22,15 +25,17 @@ All functions take 1-D arrays of equal length (points with r > 0) and return 1-D
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 
+from ..quadrature import _TABLE as _ORDER_ROWS
 from ..quadrature import Orders, gauss_jacobi, group_by, panel_count, panel_rule, segment_rule
 from .common import arccosh_ratio, log_sinc, sqrt_diff
 
 __all__ = ["tau_integrals", "theta_moments", "pressure_gradient_D", "pressure_gradient_far",
-           "log_integral"]
+           "log_integral", "normal_force", "blocks_apply"]
 
 
 def _is_power_law(profile) -> bool:
@@ -194,6 +199,14 @@ def _theta_groups(profile, r, lo, hi, n):
 
 
 def tau_integrals(profile, r, lo, hi, ords: Orders, kinds):
+    """int_lo^hi F(u) dt with u = r cosh t for F in ``kinds`` (see ``_tau_exact``); a tabulated profile
+    with knots takes the block route (``_blocks_tau``), the others the panel rules."""
+    if _use_blocks(profile, r):
+        return _blocks_tau(profile, r, lo, hi, ords, kinds)
+    return _tau_exact(profile, r, lo, hi, ords, kinds)
+
+
+def _tau_exact(profile, r, lo, hi, ords: Orders, kinds):
     """int_lo^hi F(u) dt with u = r cosh t, s = r sinh t, for F in ``kinds``:
     "G": g'(u)  (so int_u g'(u) du / sqrt(u^2 - r^2), eq. 9 and 24);
     "GE": g'(u) exp(-2t)  (for the load bracket of eq. 9, see ``normal``);
@@ -250,6 +263,14 @@ def theta_moments(profile, r, th_lo, th_hi, ords: Orders):
             p0[idx] -= q0
             p2[idx] -= q2
         return scale * p0, scale * p2
+    if _use_blocks(profile, r):
+        v = _blocks_sin(profile, r, th_lo, th_hi, ords, ("P0", "P2"))
+        return v["P0"], v["P2"]
+    return _theta_exact(profile, r, th_lo, th_hi, ords)
+
+
+def _theta_exact(profile, r, th_lo, th_hi, ords: Orders):
+    """P0, P2 of ``theta_moments`` by the knot-resolving rules."""
     p0, p2 = np.zeros(r.size), np.zeros(r.size)
     for idx, t, w in _theta_groups(profile, r, th_lo, th_hi, ords.n_theta):
         st = np.sin(t)
@@ -279,9 +300,10 @@ def pressure_gradient_D(profile, r, th_h, ords: Orders):
         z = (m - 1.0) * ls
         phi = (m - 1.0) * ratio * (np.expm1(z) / z)   # ((sin t/t)^(m-1) - 1) / t^2; z < 0 here
         return B * r ** (m - 1.0) * (th_h ** m + m * th_h ** (m + 2.0) * (weights * phi).sum(axis=1))
-    integral = np.zeros(r.size)
-    for idx, t, w in _theta_groups(profile, r, np.zeros_like(th_h), th_h, ords.n_theta):
-        integral[idx] = (w * profile.d2g(r[idx, None] * np.sin(t))).sum(axis=1)
+    if _use_blocks(profile, r):
+        integral = _blocks_sin(profile, r, np.zeros_like(th_h), th_h, ords, ("D",))["D"]
+    else:
+        integral = _D_exact(profile, r, np.zeros_like(th_h), th_h, ords)
     g0 = float(profile.dg(0.0))
     return integral + (g0 / r if g0 != 0.0 else 0.0)
 
@@ -299,8 +321,23 @@ def pressure_gradient_far(profile, r, th_h, ords: Orders):
         th = th_h[:, None] * nodes[None, :]
         c = np.cos(th)
         return B * r ** m * th_h ** (p + 1.0) * (weights * (np.sin(th) / th) ** p / (c * c)).sum(axis=1)
+    if _use_blocks(profile, r):
+        return _blocks_sin(profile, r, np.zeros_like(th_h), th_h, ords, ("F",))["F"]
+    return _far_exact(profile, r, np.zeros_like(th_h), th_h, ords)
+
+
+def _D_exact(profile, r, lo, hi, ords: Orders):
+    """int_lo^hi g''(r sin t) dt by the knot-resolving rules."""
     out = np.zeros(r.size)
-    for idx, t, w in _theta_groups(profile, r, np.zeros_like(th_h), th_h, ords.n_theta):
+    for idx, t, w in _theta_groups(profile, r, lo, hi, ords.n_theta):
+        out[idx] = (w * profile.d2g(r[idx, None] * np.sin(t))).sum(axis=1)
+    return out
+
+
+def _far_exact(profile, r, lo, hi, ords: Orders):
+    """int_lo^hi sin(t) g'(r sin t) / cos^2(t) dt by the knot-resolving rules."""
+    out = np.zeros(r.size)
+    for idx, t, w in _theta_groups(profile, r, lo, hi, ords.n_theta):
         st, ct = np.sin(t), np.cos(t)
         out[idx] = (w * st * profile.dg(r[idx, None] * st) / (ct * ct)).sum(axis=1)
     return out
@@ -348,4 +385,287 @@ def log_integral(profile, lo, hi, ords: Orders):
                 with np.errstate(invalid="ignore", divide="ignore"):
                     vals[idx] = np.where(w > 0.0, w * profile.dg(v) / np.where(v > 0.0, v, 1.0), 0.0).sum(axis=1)
             out[zero] = vals
+    return out
+
+
+# -- the block route of tabulated profiles -----------------------------------------------------
+#
+# The knot-resolving rules cost O(knots) per point: g' and g'' have a sqrt cusp at every knot whose
+# size does not shrink with the spacing fast enough to be merged into longer panels (ignoring the
+# knots of a 1000-sample hyperboloid costs 1e-8 p_m in the stresses and 1e-4 p_m/a in dp/dz at any
+# rtol).  Every integral here is int phi(u) k(u, r) du with phi = g' or g'' and a kernel k that is
+# analytic except at u = +-r (docs/theory/axisymmetric.md (A104)).  On a dyadic tree of blocks over
+# [0, r_max] the moments of phi against the Lagrange polynomials of p Chebyshev points are computed
+# once per profile (knots resolved there, once); a block at least _SEP block widths away from
+# u = r then contributes sum_i W_i k(u_i, r), with the kernel's interpolation error as its only
+# error (A105).  Per point the range splits into such blocks (about two per tree level) and two
+# short ends next to r and to the range's other limit, which the knot-resolving rules take as
+# before: the cost per point is O(log knots) (1000 samples, rtol 1e-10, stresses and dp/dz: 144
+# lookups and 625 block nodes per point against 18516 lookups of the knot-resolving rules).
+
+_BLOCKS = True          # False: the knot-resolving rules alone (the reference of the tests)
+# _SEP and _LEAF_FRACTION: of (1, 1.5, 2) x (0.25, 0.5, 1), (1.5, 0.5) was among the fastest on
+# 25 and 1000 samples (the others within 10-40 %: a larger _SEP means fewer blocks of more nodes,
+# a larger leaf fewer levels but more knots in the ends)
+_SEP = 1.5              # distance of a block from the singular point u = r, in block widths
+_LEAF_FRACTION = 0.5    # leaf width / median knot spacing: the ends then hold one knot or none
+_MAX_LEVEL = 15         # at most 2^15 leaves (r_max / 2^15 on tables with uneven spacing)
+_LEAF_ORDER = 24        # graded Gauss nodes per knot segment of a leaf moment (exact to rounding)
+
+
+def _use_blocks(profile, r) -> bool:
+    return _BLOCKS and r.size > 0 and _knots(profile) is not None
+
+
+def blocks_apply(profile) -> bool:
+    """True when the integrals of ``profile`` take the block route (then ``normal_force`` is the
+    O(log knots) load of the same route)."""
+    return _BLOCKS and _knots(profile) is not None
+
+
+def _block_order(ords: Orders) -> int:
+    """Chebyshev points per block for the tolerance row of ``ords``: the kernel interpolation
+    error on a block _SEP widths from u = r is at most K rho^-p of the kernel's largest value on
+    the block (A105); p makes it rtol/20."""
+    rtol = next((tol for tol, o in _ORDER_ROWS if o == ords), _ORDER_ROWS[-1][0])
+    delta = 1.0 + 2.0 * _SEP                         # singular point / half width, from the centre
+    rho = _ELLIPSE * (delta + math.sqrt(delta * delta - 1.0))
+    # the ellipse's nearest point to the singularity, in half widths; the strongest kernel of (A104)
+    # is d^(-3/2) ("F"), and the bound of (A105) is 4 M rho^-p / (rho - 1)
+    gap = delta - 0.5 * (rho + 1.0 / rho)
+    K = 4.0 * ((delta - 1.0) / gap) ** 1.5 / (rho - 1.0)
+    return int(math.ceil(math.log(20.0 * K / rtol) / math.log(rho)))
+
+
+_ELLIPSE = 0.8      # the Bernstein ellipse used in the bound: 0.8 of the largest one that fits
+
+
+class _Tree:
+    """Moments W[phi][flat block, i] = int_block phi(u) l_i(u) du of phi = g' (1) and g'' (2),
+    l_i the Lagrange polynomials of the block's p Chebyshev points; block b of level l (width
+    r_max 2^-l) has flat index 2^l - 1 + b."""
+
+    def __init__(self, profile, p: int):
+        kn = profile._knots
+        R = float(kn[-1])
+        spacing = float(np.median(np.diff(kn)))
+        self.L = int(np.clip(math.ceil(math.log2(R / (_LEAF_FRACTION * spacing))), 1, _MAX_LEVEL))
+        self.w = R / 2.0 ** self.L
+        k = np.arange(p)
+        self.xi = np.cos((2 * k + 1) * math.pi / (2 * p))          # Chebyshev points, first kind
+        # l_i(x) = sum_k T_k(x) C[k, i]: the inverse of the Chebyshev Vandermonde matrix
+        C = (2.0 / p) * np.cos(np.outer(k, np.arccos(self.xi)))
+        C[0] *= 0.5
+        self.C = C
+        leaves = self._leaf_moments(profile, kn, R, p)
+        self.W = {q: self._upward(leaves[q]) for q in (1, 2)}
+        # int_0^(j w) u g'(u) du at the leaf edges: u is a polynomial, so the leaf sums are exact
+        centres = (np.arange(2 ** self.L) + 0.5) * self.w
+        nodes = centres[:, None] + 0.5 * self.w * self.xi[None, :]
+        self.cum_ug = np.concatenate([[0.0], np.cumsum((leaves[1] * nodes).sum(axis=1))])
+
+    def _basis(self, x):
+        """l_i(x) for x in [-1, 1], shape x.shape + (p,)."""
+        T = np.cos(np.arange(self.xi.size) * np.arccos(np.clip(x, -1.0, 1.0))[..., None])
+        return T @ self.C
+
+    def _leaf_moments(self, profile, kn, R, p):
+        n = 2 ** self.L
+        lo = np.arange(n) * self.w
+        hi = np.minimum(lo + self.w, R)
+        out = {1: np.zeros((n, p)), 2: np.zeros((n, p))}
+        for idx, s, w in _knot_groups("lin", kn, np.ones(n), lo, hi, 1, _LEAF_ORDER):
+            x = (s - lo[idx, None]) * (2.0 / self.w) - 1.0
+            ell = self._basis(x)
+            for q, phi in ((1, profile.dg), (2, profile.d2g)):
+                out[q][idx] = np.einsum("mn,mnp->mp", w * phi(s), ell)
+        return out
+
+    def _upward(self, leaf):
+        """All levels from the leaves: a parent's Lagrange polynomial is a polynomial of degree
+        p - 1 on each child, so its moment is the child's moments at its values there (exact)."""
+        left = self._basis(0.5 * (self.xi - 1.0))      # [j, i] = l_i(child node j), parent coordinate
+        right = self._basis(0.5 * (self.xi + 1.0))
+        levels = [leaf]
+        for _ in range(self.L):
+            W = levels[-1]
+            levels.append(W[0::2] @ left + W[1::2] @ right)
+        return np.concatenate(levels[::-1], axis=0)
+
+    def decompose(self, r, lo, hi, side):
+        """Blocks covering [ua, ub] within [lo, hi] (u units) that keep _SEP widths from r, the
+        singular point below lo (side +1, u = r cosh t) or above hi (side -1, u = r sin t).
+        Returns (point, flat index, level) per block and ua, ub, has (points with blocks); the
+        ends [lo, ua] and [ub, hi] are left to the knot-resolving rules."""
+        w, n = self.w, 2 ** self.L
+        rho = r / w
+        with np.errstate(invalid="ignore"):
+            if side > 0:
+                j0 = np.ceil(np.maximum(lo / w, rho + _SEP))
+                j1 = np.floor(np.minimum(hi / w, n))
+            else:
+                j0 = np.ceil(lo / w)
+                j1 = np.floor(np.minimum(np.minimum(hi / w, rho - _SEP), n))
+        has = j1 > j0
+        pts = np.flatnonzero(has)
+        pos, end, rr = j0[pts].astype(np.int64), j1[pts].astype(np.int64), rho[pts]
+        ua, ub = np.where(has, j0 * w, hi), np.where(has, j1 * w, hi)
+        found = []
+        while pts.size:
+            low = pos & -pos
+            m = np.where(pos == 0, self.L, np.log2(np.maximum(low, 1))).astype(np.int64)
+            m = np.minimum(m, np.floor(np.log2(end - pos)).astype(np.int64))
+            room = (pos - rr) / _SEP if side > 0 else (rr - pos) / (_SEP + 1.0)
+            m = np.maximum(np.minimum(m, np.floor(np.log2(room)).astype(np.int64)), 0)
+            level = self.L - m
+            found.append((pts, (np.int64(1) << level) - 1 + (pos >> m), level))
+            pos = pos + (np.int64(1) << m)
+            keep = pos < end
+            pts, pos, end, rr = pts[keep], pos[keep], end[keep], rr[keep]
+        if found:
+            pt, flat, level = (np.concatenate(v) for v in zip(*found))
+        else:
+            pt = flat = level = np.zeros(0, dtype=np.int64)
+        return pt, flat, level, ua, ub, has
+
+    def sums(self, pt, flat, level, r, P, terms):
+        """{kind: sum over a point's blocks of sum_i W[phi][block, i] k(u_i, r)} for the
+        (kind, phi, kernel) ``terms``."""
+        out = {}
+        if pt.size == 0:
+            return {kind: np.zeros(P) for kind, _, _ in terms}
+        width = self.w * np.exp2(self.L - level)
+        centre = (flat - ((np.int64(1) << level) - 1) + 0.5) * width
+        u = centre[:, None] + (0.5 * width)[:, None] * self.xi[None, :]
+        rr = r[pt][:, None]
+        cache, moments = {}, {}
+        for kind, q, kernel in terms:
+            if q not in moments:
+                moments[q] = self.W[q][flat]
+            vals = np.einsum("ij,ij->i", moments[q], kernel(u, rr, cache))
+            out[kind] = np.bincount(pt, weights=vals, minlength=P)
+        return out
+
+
+def normal_force(profile, h, ords: Orders):
+    """F_N/E* = 2 int_0^h u g'(u) du (A4), (A106) of a tabulated profile at contact radii h (1-D array) in
+    O(log knots) per value: the exact leaf sums of the block tree up to the last leaf edge below h
+    and the knot-resolving rule on the rest (shorter than a leaf).  (``Tabulated.normal_force`` sums
+    all pieces below h: O(knots).)"""
+    tree = _tree(profile, _block_order(ords))
+    j = np.clip(np.floor(h / tree.w), 0, 2 ** tree.L).astype(np.int64)
+    lo = np.minimum(j * tree.w, h)
+    out = tree.cum_ug[j].copy()
+    for idx, u, w in _knot_groups("lin", profile._knots, np.ones(h.size), lo, h, 1, ords.n_theta):
+        out[idx] += (w * u * profile.dg(u)).sum(axis=1)
+    return 2.0 * out
+
+
+@functools.lru_cache(maxsize=8)
+def _tree(profile, p: int) -> _Tree:
+    return _Tree(profile, p)
+
+
+def _cached(cache, key, make):
+    if key not in cache:
+        cache[key] = make()
+    return cache[key]
+
+
+def _root_inverse(p, q):
+    """1/sqrt((p - q)(p + q)) (A78), in place: these arrays are the largest of the block route."""
+    d = p - q
+    d *= p + q
+    np.sqrt(d, out=d)
+    return np.reciprocal(d, out=d)
+
+
+def _inv_s(u, r, cache):
+    """1/s, s = sqrt(u^2 - r^2)."""
+    return _cached(cache, "1/s", lambda: _root_inverse(u, r))
+
+
+def _r_ups(u, r, cache):
+    """r/(u + s) = e^-t."""
+    def make():
+        d = np.reciprocal(_inv_s(u, r, cache))
+        d += u
+        return np.divide(r, d, out=d)
+    return _cached(cache, "r/(u+s)", make)
+
+
+def _inv_c(u, r, cache):
+    """1/c, c = sqrt(r^2 - u^2)."""
+    return _cached(cache, "1/c", lambda: _root_inverse(r, u))
+
+
+def _sin_t(u, r, cache):
+    """u/r = sin t."""
+    return _cached(cache, "u/r", lambda: u / r)
+
+
+# kernels k(u, r) of (A104): the integrand of each kind per du, with the function it multiplies
+# (1: g', 2: g'')
+_KERNELS = {
+    "G": (1, lambda u, r, c: _inv_s(u, r, c)),
+    "GE": (1, lambda u, r, c: _inv_s(u, r, c) * _r_ups(u, r, c) ** 2),
+    "H": (2, lambda u, r, c: _inv_s(u, r, c) * _r_ups(u, r, c) / r),
+    "P0": (1, lambda u, r, c: _sin_t(u, r, c) * _inv_c(u, r, c)),
+    "P2": (1, lambda u, r, c: _sin_t(u, r, c) ** 3 * _inv_c(u, r, c)),
+    "D": (2, lambda u, r, c: _inv_c(u, r, c)),
+    "F": (1, lambda u, r, c: u * r * _inv_c(u, r, c) ** 3),
+}
+
+
+def _blocks_tau(profile, r, lo, hi, ords: Orders, kinds):
+    """``tau_integrals`` by the block route: blocks of [r cosh lo, r cosh hi] away from u = r, the
+    two ends by ``_tau_exact``."""
+    tree = _tree(profile, _block_order(ords))
+    pt, flat, level, ua, ub, has = tree.decompose(r, r * np.cosh(lo), r * np.cosh(hi), +1)
+    ta = np.where(has, np.clip(arccosh_ratio(np.maximum(ua, r), r), lo, hi), hi)
+    tb = np.where(has, np.clip(arccosh_ratio(np.maximum(ub, r), r), ta, hi), hi)
+    out = _tau_exact(profile, r, lo, ta, ords, kinds)
+    ih = np.flatnonzero(has & (tb < hi))
+    if ih.size:
+        end = _tau_exact(profile, r[ih], tb[ih], hi[ih], ords, kinds)
+        for k in kinds:
+            out[k][ih] += end[k]
+    blocks = tree.sums(pt, flat, level, r, r.size, [(k,) + _KERNELS[k] for k in kinds])
+    for k in kinds:
+        out[k] += blocks[k]
+    return out
+
+
+def _sin_exact(profile, r, lo, hi, ords: Orders, kinds):
+    out = {}
+    if "P0" in kinds or "P2" in kinds:
+        out["P0"], out["P2"] = _theta_exact(profile, r, lo, hi, ords)
+    if "D" in kinds:
+        out["D"] = _D_exact(profile, r, lo, hi, ords)
+    if "F" in kinds:
+        out["F"] = _far_exact(profile, r, lo, hi, ords)
+    return out
+
+
+def _blocks_sin(profile, r, th_lo, th_hi, ords: Orders, kinds):
+    """The u = r sin t integrals (P0, P2 of ``theta_moments``, D of ``pressure_gradient_D``, F of
+    ``pressure_gradient_far``) by the block route: blocks of [r sin th_lo, r sin th_hi] away from
+    u = r, the two ends by the knot-resolving rules."""
+    tree = _tree(profile, _block_order(ords))
+    pt, flat, level, ua, ub, has = tree.decompose(r, r * np.sin(th_lo), r * np.sin(th_hi), -1)
+
+    def angle(u):
+        return np.arctan2(u, sqrt_diff(r, np.minimum(u, r)))
+
+    ta = np.where(has, np.clip(angle(ua), th_lo, th_hi), th_hi)
+    tb = np.where(has, np.clip(angle(ub), ta, th_hi), th_hi)
+    out = _sin_exact(profile, r, th_lo, ta, ords, kinds)
+    ih = np.flatnonzero(has & (tb < th_hi))
+    if ih.size:
+        end = _sin_exact(profile, r[ih], tb[ih], th_hi[ih], ords, kinds)
+        for k in out:
+            out[k][ih] += end[k]
+    blocks = tree.sums(pt, flat, level, r, r.size, [(k,) + _KERNELS[k] for k in kinds])
+    for k in kinds:
+        out[k] += blocks[k]
     return out

@@ -37,7 +37,7 @@ import numpy as np
 from scipy.special import gammaln
 
 from ..quadrature import orders
-from . import normal, tangential
+from . import integrals, normal, tangential
 from .common import arccosh_ratio
 from .integrals import log_integral, tau_integrals, theta_moments
 
@@ -134,6 +134,24 @@ def _ratio_kN_kT(m):
     return kN, kT
 
 
+class _BlockLoad:
+    """A tabulated profile as ``normal.polar_from_integrals`` reads it, with the load F(r) of the
+    block route (docs/theory/axisymmetric.md (A106), O(log knots) per point; the exact sums of
+    ``Tabulated.normal_force`` visit every piece below r: 88 us per point at 1000 samples, more
+    than all the integrals)."""
+
+    def __init__(self, profile, ords):
+        self.profile, self.ords = profile, ords
+        self.tip_exponent, self.tip_coefficient = profile.tip_exponent, profile.tip_coefficient
+
+    def normal_force(self, h):
+        return integrals.normal_force(self.profile, np.asarray(h, dtype=float), self.ords)
+
+
+def _load_view(profile, ords):
+    return _BlockLoad(profile, ords) if integrals.blocks_apply(profile) else profile
+
+
 # -- Cartesian components of the axisymmetric normal part --------------------------------------
 
 def _cartesian(srr, sff, dev, X, Y):
@@ -190,7 +208,7 @@ def _stress_main(profile, closed, ords, comps, x, y, r, a, c, nu, mu):
             G[ii] = hi_part["G"] + lo_part["G"]
             if "GE" in kinds:
                 GE[ii] = hi_part["GE"] + lo_part["GE"]
-            szz, srr, sff, dev = normal.polar_from_integrals(profile, r, a, nu, G, GE)
+            szz, srr, sff, dev = normal.polar_from_integrals(_load_view(profile, ords), r, a, nu, G, GE)
         if need_shear:
             Gs = np.zeros(n)
             Gs[ii] = G_slip
