@@ -16,7 +16,8 @@ Routes (docs/theory/interior.md (I18)-(I23), (I30)-(I33)):
   included.
 * ``quadrature``: every profile as mu int_c^a K_T(x; rho) g'(rho) d rho, the superposition of
   sliding punches (I33) integrated over [c, a] directly (I45) on the panels of the normal route
-  (``interior._superpose``, (I16)-(I17)).  Accuracy: |error| <= rtol * max(|value|, mu p_m) with
+  with their node counts (``interior._superpose_flat``, (I16)-(I17), (I54)), summed as radial
+  functions (I55).  Accuracy: |error| <= rtol * max(|value|, mu p_m) with
   p_m the mean contact pressure (measured in docs/theory/interior.md section 5).  On the surface
   z = 0 the tangential part of the surface kernels (docs/theory/axisymmetric.md (A34)-(A41)),
   the limit z -> 0+, with their flags.
@@ -33,8 +34,8 @@ import math
 
 import numpy as np
 
-from .interior import _live, _Nodes, _superpose, dpdz_integrator, flat_arguments
-from .interior_hertz import COMPONENTS, _geometry, sliding_punch_unit, sliding_unit
+from .interior import _direction, _Flat, _live, _Nodes, _superpose, _superpose_flat, dpdz_integrator, flat_arguments
+from .interior_hertz import COMPONENTS, _geometry, _sliding_punch_scalars, mns, sliding_punch_unit, sliding_unit
 from .profiles import Profile
 from .surface import surface_dpdz, surface_stress
 
@@ -115,6 +116,43 @@ def _integrate_sliding(nd: _Nodes, profile) -> dict[str, np.ndarray]:
 _SLIDING_KERNEL = (_integrate_sliding, COMPONENTS)
 
 
+def _flat_sliding(f: _Flat, profile):
+    """(I33) on the flat rule of ``interior._superpose_flat`` (I54): the radial functions of the
+    sliding punch (I30)-(I31) summed per point with the powers of 1/rho their monomials in x, y
+    carry in (I21), and (I21) formed once per point (I55); None where a node is on a punch's
+    edge ring (z/rho underflowed)."""
+    inv = 1.0 / f.rho
+    zs = f.z[f.row] * inv
+    z2 = zs * zs
+    S, M, N = mns(f.rm1, zs, z2)
+    if not np.all(S > 0.0):
+        return None
+    v = _sliding_punch_scalars(dict(M=M, N=N, S=S, z=zs))
+    nu = f.node_nu()
+    P, Dg, zdgz = v["P"], v["Dg"], zs * v["Dgz"]
+    b = 4.0 * nu * v["D2g"] - 2.0 * v["zD2gz"]
+    # x^p y^q / rho^(p+q) = ux^p uy^q (r/rho)^(p+q): bounded (rho > 1e-150 r), no 1/rho^4 overflow
+    rs = f.r[f.row] * inv
+    w = f.w * inv                                  # K_T = unit(x / rho) / rho
+    x0 = f.sum(v["X"] * w)
+    w *= rs
+    a1 = f.sum((4.0 * (1.0 + nu) * P - 6.0 * zdgz + 12.0 * nu * Dg) * w)
+    a2 = f.sum((4.0 * nu * (P + Dg) - 2.0 * zdgz) * w)
+    a3 = f.sum((2.0 * P - 2.0 * zdgz + 4.0 * nu * Dg) * w)
+    cz = f.sum(v["zgzzz"] * w)
+    w *= rs
+    d = f.sum(v["zDgzz"] * w)
+    w *= rs
+    b = f.sum(b * w)
+    x, y = _direction(f.x, f.y, f.r)
+    k = 1.0 / (4.0 * math.pi * math.pi)            # (I21)'s 1/(4 pi) and the punch's 1/pi
+    return {"xx": k * x * (a1 + x * x * b), "yy": k * x * (a2 + y * y * b), "xy": k * y * (a3 + x * x * b),
+            "zz": -2.0 * k * x * cz, "xz": x0 / math.pi - 2.0 * k * x * x * d, "yz": -2.0 * k * x * y * d}
+
+
+_FLAT_SLIDING_KERNEL = (_flat_sliding, COMPONENTS, _integrate_sliding)
+
+
 def _superposition(x, y, z, a, c, nu, mu, profile, rtol):
     out = {k: np.zeros(x.size) for k in COMPONENTS}
     act = (mu > 0.0) & (c < a)
@@ -128,8 +166,8 @@ def _superposition(x, y, z, a, c, nu, mu, profile, rtol):
         return out
     # one integral over [c, a] (I45), not Sigma_T(a) - Sigma_T(c): the difference lost
     # eps |Sigma_T(a)|, 2e-11 mu p_m for the n = 0.5 power law at z = 7.6e-10 a on the axis
-    total = _superpose(x[inner], y[inner], z[inner], a[inner], nu[inner], profile, rtol, _SLIDING_KERNEL,
-                       lower=c[inner])
+    total = _superpose_flat(x[inner], y[inner], z[inner], a[inner], nu[inner], profile, rtol, _FLAT_SLIDING_KERNEL,
+                            lower=c[inner])
     for k in COMPONENTS:
         out[k][inner] = mu[inner] * total[k]
     return out
