@@ -127,6 +127,7 @@ class Tabulated:
         ri = r[:-1]
         self._b = np.stack([3 * c3 * ri ** 2 - 2 * c2 * ri + c1, 2 * c2 - 6 * c3 * ri, 3 * c3])
         self._lo, self._hi = r[:-1], r[1:]
+        self.evaluations = 0          # nodes at which g' was formed for the panel rules (dg_panels)
 
     def _arg(self, r):
         r = np.abs(np.asarray(r, dtype=float))
@@ -143,21 +144,64 @@ class Tabulated:
     def d2f(self, r):
         return self._d2s(self._arg(r))
 
+    def dg_panels(self, a, k, order):
+        """Nodes, weights and g' on the knot panels of [0, a] (one contact radius ``a``, one ``k``).
+
+        Each panel [r_i, r_i+1] is mapped by x = r_i + L (3 w^2 - 2 w^3), w Gauss-Legendre of
+        ``order``: the map vanishes quadratically at both panel ends, which smooths the
+        (x - r_i)^((3+k)/2) terms that the knots leave in g' (docs/theory/graded.md (G14)) and the
+        (a - x)^((1-k)/2) end of the displacement kernel of (G49).  Cached per (a, k, order), so
+        every row of a sweep reuses one evaluation of the exact beta sums; ``evaluations`` counts
+        the nodes at which g' was formed.
+        """
+        key = (float(a), float(k), int(order))
+        cache = self.__dict__.setdefault("_panel_cache", {})
+        if key not in cache:
+            # a knot within 1e-12 a of a (a chosen on a knot, rounded) would leave the edge
+            # singularity on an ungraded panel: it joins the last panel
+            knots = np.concatenate([[0.0], self.breaks[self.breaks < a * (1.0 - 1e-12)], [float(a)]])
+            # the last panel is cut geometrically towards a (widths L 0.3^j, down to 1e-20 L): the
+            # kernel of (G49) is singular at t = r, just beyond a as r -> a+; on each cut the
+            # singularity is about as far away as the cut is wide, so each converges geometrically
+            # (one smoothed panel needed 128 nodes for 1e-10 at r = a (1 + 1e-9), measured)
+            last = knots[-1] - knots[-2]
+            cuts = knots[-1] - last * _EDGE_GRADING ** np.arange(0, 39)
+            w, W = quadrature.gauss_legendre(int(order))
+            smooth = w * w * (3.0 - 2.0 * w), 6.0 * w * (1.0 - w) * W
+            x, wx = [], []
+            for edges, (u, du) in ((knots[:-1], smooth), (np.append(cuts, knots[-1]), (w, W))):
+                L = np.diff(edges)[:, None]
+                x.append((edges[:-1, None] + L * u).ravel())
+                wx.append((L * du).ravel())
+            x, wx = np.concatenate(x), np.concatenate(wx)
+            self.evaluations += x.size
+            # blocks of 256 nodes bound the (nodes x pieces) work arrays (~2 MB per 1000 pieces)
+            dg = np.concatenate([self.dg(x[i:i + 256], float(k)) for i in range(0, x.size, 256)])
+            cache[key] = (x, wx, dg)
+        return cache[key]
+
     def _beta_sum(self, x, k, weights):
         # sum over pieces and m of w_m b_m x^(m+1) B((m+1)/2, (1+k)/2)/2 [I(hi^2/x^2) - I(lo^2/x^2)]
         x = self._arg(x)[..., None]
         k = np.asarray(k, float)[..., None]
         xs = np.where(x > 0, x, 1.0)
-        zl = np.minimum(self._lo / xs, 1.0) ** 2
-        zh = np.minimum(self._hi / xs, 1.0) ** 2
+        # pieces above every x contribute I(1) - I(1) = 0: only the first `live` ones are formed
+        live = max(1, int(np.searchsorted(self._lo, float(np.max(x)), side="left")))
+        knots = np.append(self._lo[:live], self._hi[live - 1])
         q = 0.5 * (1.0 + k)
+        z, qb = np.broadcast_arrays(np.minimum(knots / xs, 1.0) ** 2, q)     # k may vary where x does not
+        high = z > 0.5
         total = 0.0
         for m in range(3):
             pm = 0.5 * (m + 1.0)
-            # difference of I near 1 taken from the complements (no cancellation)
-            dI = np.where(zl > 0.5, betaincc(pm, q, zl) - betaincc(pm, q, zh),
-                          betainc(pm, q, zh) - betainc(pm, q, zl))
-            total = total + weights[m] * np.sum(self._b[m] * dI, axis=-1) * _B(pm, q[..., 0]) / 2 \
+            # one incomplete beta per knot, shared by its two pieces: I where z <= 1/2, else the
+            # complement (differences of I near 1 taken from the complements: no cancellation)
+            J = np.empty(z.shape)
+            J[high] = betaincc(pm, qb[high], z[high])
+            J[~high] = betainc(pm, qb[~high], z[~high])
+            Jl, Jh, hl, hh = J[..., :-1], J[..., 1:], high[..., :-1], high[..., 1:]
+            dI = np.where(hl, Jl - Jh, np.where(hh, (1.0 - Jh) - Jl, Jh - Jl))
+            total = total + weights[m] * np.sum(self._b[m, :live] * dI, axis=-1) * _B(pm, q[..., 0]) / 2 \
                 * x[..., 0] ** (m + 1.0)
         return total
 
@@ -169,9 +213,13 @@ class Tabulated:
         """g'(x) = sum (m+1) b_m x^m B_m/2 dI (from d(r f')/dr = sum (m+1) b_m r^m);
         g'(0) = f'(0) B(1/2, (1+k)/2)/2."""
         x = self._arg(x)
-        xs = np.where(x > 0, x, 1.0)
+        xs = np.where(x > 0, x, self.r_max)      # any radius inside the table (x = 0 takes `centre`)
         centre = self._b[0, 0] * 0.5 * _B(0.5, 0.5 * (1.0 + np.asarray(k, float)))
         return np.where(x > 0, self._beta_sum(xs, k, (1.0, 2.0, 3.0)) / xs, centre)
+
+
+#: ratio of successive cuts of the last panel towards the contact edge (Tabulated.dg_panels)
+_EDGE_GRADING = 0.3
 
 
 def _transform(x, profile, k, rtol, derivative):
