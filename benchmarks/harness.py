@@ -161,7 +161,8 @@ def _interior(cfg: Config) -> dict:
                     s = {k: s[k] + t[k] for k in s}
                 return np.stack([s[k] for k in ax.COMPONENTS])
 
-            closed = ax.has_interior_closed_form(profile.kind, getattr(profile, "n", None))
+            closed = ax.has_interior_closed_form(profile.kind, getattr(profile, "n", None),
+                                                 tangential=load != "normal")
             quad = stress("quadrature", INTERIOR_REF_RTOL)
             ref = stress("closed", INTERIOR_REF_RTOL) if closed else quad
             variants = [(CLOSED, 0.0, lambda fn=stress: fn("closed", INTERIOR_REF_RTOL))] if closed else []
