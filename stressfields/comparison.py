@@ -256,7 +256,7 @@ def _classify(scen: Scenario, columns: list[Column], physical: bool, source: str
                     else "not a float field in this mode")
             raise CompareError(f"{source}: column {col.label!r} is {what} for scenario '{scen.name}' "
                                f"({'physical' if physical else 'normalised'} mode); coordinates: "
-                               f"{', '.join(p.name for p in scen.parameters if _is_column(p))}; fields: "
+                               f"{', '.join(p.name for p in scen.parameters if p.per_point)}; fields: "
                                f"{', '.join(fields)}")
     if not coords:
         raise CompareError(f"{source}: no coordinate column (e.g. x, y, z of scenario '{scen.name}')")
@@ -276,9 +276,6 @@ def _classify(scen: Scenario, columns: list[Column], physical: bool, source: str
         raise CompareError(f"{source}, column {ids.label!r}: node identities must be 32-bit integers")
     return coords, values, ids
 
-
-def _is_column(par) -> bool:
-    return par.sweepable and par.kind != ARRAY and not par.choices
 
 
 def _select(values: list[Column], names, source: str) -> list[Column]:

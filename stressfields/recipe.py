@@ -245,7 +245,7 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
     # a refused column is already reported: not "missing" as well
     rejected |= {k for k in points_raw if k not in columns and k not in params}
     if "points" in data and not columns:    # a refused file or sample: its columns are not "missing" too
-        rejected |= {k for k, par in declared.items() if _is_column(par) and k not in params}
+        rejected |= {k for k, par in declared.items() if par.per_point and k not in params}
     for key, raw in params.items():
         if key in rejected:
             continue
@@ -507,7 +507,7 @@ def _sample_spec(raw, declared: dict, params: dict, scen: Scenario, problems: li
     elif isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         problems.append(f"points.sample.seed = {show(seed)} must be an integer >= 0")
     ranges = {}
-    columns = [p for p in declared if _is_column(declared[p]) and declared[p].kind != "int"]
+    columns = [p for p in declared if declared[p].per_point and declared[p].kind != "int"]
     for key, value in raw.items():
         if key in SAMPLE_KEYS and not isinstance(value, list):
             continue
@@ -610,10 +610,10 @@ def _parse_points(table: dict, declared: dict, params: dict, scen: Scenario,
     for key, raw in table.items():
         if key not in declared:
             problems.append(f"points: unknown parameter {show(key)} for scenario '{scen.name}'{_hint(scen, key)}; "
-                            f"allowed: {', '.join(p for p in declared if _is_column(declared[p]))}")
+                            f"allowed: {', '.join(p for p in declared if declared[p].per_point)}")
         elif key in params:
             problems.append(f"points.{key}: '{key}' is also given in [parameters]; give it in one place")
-        elif not _is_column(declared[key]):
+        elif not declared[key].per_point:
             par = declared[key]
             what = "a choice" if par.choices else "an array" if par.kind == ARRAY else "a single-value"
             problems.append(f"points.{key}: '{key}' cannot be a points column ({what} parameter); "
@@ -622,9 +622,6 @@ def _parse_points(table: dict, declared: dict, params: dict, scen: Scenario,
             columns[key] = column
     return columns
 
-
-def _is_column(par: Parameter) -> bool:
-    return par.sweepable and par.kind != ARRAY and not par.choices
 
 
 def _parse_column(par: Parameter, raw, problems: list[str]) -> np.ndarray | None:

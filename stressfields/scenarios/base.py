@@ -94,6 +94,11 @@ class Parameter:
         return " and ".join(" or ".join(f"{k} is not given" if v is None else f"{k} = {v!r}" for v in vs)
                             for k, vs in self.when.items())
 
+    @property
+    def per_point(self) -> bool:
+        """Whether the parameter may be a column of a recipe's [points] (one number per point)."""
+        return self.sweepable and self.kind != ARRAY and not self.choices
+
     def allowed(self) -> str:
         """Plain-language description of the allowed values, used in errors and in the schema."""
         if self.choices:
