@@ -27,8 +27,6 @@ is, the RMS difference and the relative L2 difference. Nodes where the reference
 """
 from __future__ import annotations
 
-import csv
-import io
 import json
 import math
 import os
@@ -42,6 +40,7 @@ from typing import Mapping
 import numpy as np
 import xarray as xr
 
+from .pointfiles import FileProblem, csv_columns
 from .recipe import MAX_RECIPE_BYTES, POINT, RecipeError, load
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Scenario
@@ -165,30 +164,15 @@ def read_user_data(user_data) -> tuple[list[Column], str]:
 
 
 def _csv_columns(path: Path, source: str) -> list[Column]:
+    """The columns of a CSV (the reader of [points] files: one fast pass, the line and column of a
+    bad value named), each with the unit its header gives."""
     try:
-        text = path.read_bytes().decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise CompareError(f"{source}: neither NetCDF nor UTF-8 CSV text (byte {exc.start})") from None
+        columns = csv_columns(path.read_bytes())
+    except FileProblem as exc:
+        raise CompareError(f"{source}: {exc}") from None
     except OSError as exc:
         raise CompareError(f"{source}: cannot read it ({exc.strerror})") from None
-    rows = [(n, row) for n, row in enumerate(csv.reader(io.StringIO(text)), 1)
-            if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")]
-    if not rows:
-        raise CompareError(f"{source}: no header line (e.g. x[mm],y[mm],z[mm],sigma_xx[MPa])")
-    (_, header), body = rows[0], rows[1:]
-    if not body:
-        raise CompareError(f"{source}: a header but no data rows")
-    table = np.empty((len(body), len(header)))
-    for i, (line, row) in enumerate(body):
-        if len(row) != len(header):
-            raise CompareError(f"{source}, line {line}: {len(row)} fields, the header has {len(header)}")
-        for j, cell in enumerate(row):
-            try:
-                table[i, j] = float(cell)
-            except ValueError:
-                raise CompareError(f"{source}, line {line}, column {header[j].strip()!r}: {cell.strip()[:40]!r} "
-                                   "is not a number") from None
-    return [_header_column(h, table[:, j], source) for j, h in enumerate(header)]
+    return [_header_column(h, v, source) for h, v in columns.items()]
 
 
 def _header_column(header: str, values: np.ndarray, source: str) -> Column:
