@@ -2,7 +2,6 @@
 whole after its size is checked, every problem one message (the recipe names the file)."""
 from __future__ import annotations
 
-import csv  # noqa: F401
 import hashlib
 import io
 import os
