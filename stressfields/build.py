@@ -28,12 +28,6 @@ TARGET_CHUNK_POINTS = 1_000_000
 #: two cores has work and a second task to take while the first one's block is being written
 PARALLEL_ABOVE = 200_000
 MIN_TASKS = 4
-#: families (theory pages) whose values depend on how a sweep is cut into blocks, and so keep the
-#: ~1e6-point chunking that fixes their content hash: the wavy route decides per block whether to
-#: substitute the non-periodic series, from the number of points the block has in a contact
-#: (`physics.wavy.api.SUBSTITUTE_MIN_POINTS`), and its per-case series differ in the last bits
-#: with the set of contact widths in a block
-BLOCK_DEPENDENT = frozenset({"wavy"})
 
 
 def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
@@ -41,7 +35,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
     physical = recipe.physical
     sizes = recipe.shape
     requested = {**recipe.chunks, **(chunks or {})}
-    chunking = default_chunks(sizes, requested, spread=scen.theory not in BLOCK_DEPENDENT)
+    chunking = default_chunks(sizes, requested)
     check_chunks(sizes, requested, chunking)
 
     coords: dict[str, xr.Variable] = {}
@@ -68,7 +62,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
             fixed[par.name] = value
             if not par.choices:
                 coords[par.name] = xr.Variable((), value, cf.coord_attrs(par, physical))
-    options = {"method": recipe.method, "rtol": recipe.rtol, "physical": physical}
+    options = {"method": recipe.method, "rtol": recipe.rtol, "physical": physical, "sweep": recipe.values}
 
     route = scen.route(recipe.values, recipe.method, recipe.rtol) if scen.route else None
     for dims, names in _groups(recipe).items():
@@ -98,7 +92,7 @@ def check_chunks(sizes: dict[str, int], requested: dict[str, int], chunking: dic
     raise RecipeError(chunk_problems(sizes, chunking, "chunks"), "the chunking")
 
 
-def default_chunks(sizes: dict[str, int], requested: dict[str, int], spread: bool = True) -> dict[str, int]:
+def default_chunks(sizes: dict[str, int], requested: dict[str, int]) -> dict[str, int]:
     """Chunk sizes per dimension: the requested ones, the rest filled towards ~1e6 points a chunk
     (TARGET_CHUNK_POINTS). Trailing (spatial) dimensions are kept whole first, so each line along x is
     one chunk.
@@ -108,11 +102,12 @@ def default_chunks(sizes: dict[str, int], requested: dict[str, int], spread: boo
     2.5e5 points, not one that leaves the second core idle. Only the spatial dimensions are cut there,
     where fields are evaluated point by point; the sweep dimensions keep the blocks they had, so the
     per-case quantities over them (stick radii, series tables, peaks) are computed from the same blocks
-    as before and keep their bits. ``spread=False`` (families in BLOCK_DEPENDENT) keeps the ~1e6 rule.
+    as before. Every value depends on its own point alone (tests/test_write_path.py,
+    tests/physics/test_wavy_chunk_invariance.py), so the content hash does not depend on the chunking.
     """
     out = _filled(sizes, requested)
     total = int(np.prod(list(sizes.values()), dtype=np.int64)) if sizes else 1
-    if spread and total >= PARALLEL_ABOVE and _count(sizes, out) < MIN_TASKS:
+    if total >= PARALLEL_ABOVE and _count(sizes, out) < MIN_TASKS:
         out = _spread(sizes, requested, out)
     return out
 

@@ -126,21 +126,20 @@ def test_only_trailing_dimensions_are_cut_further(sizes):
     assert {d: c for d, c in new.items() if d != last} == {d: c for d, c in old.items() if d != last}
 
 
-def test_block_dependent_families_keep_their_chunking_and_the_others_their_bits():
-    """The wavy family's values depend on its blocks (its substitution test counts a block's points):
-    its default chunking stays the ~1e6-point one, and with it its content hash. The others are cut
-    into four tasks from 2e5 points, and every variable is bit for bit that of one chunk."""
+def test_every_family_is_cut_into_tasks_and_keeps_its_bits():
+    """From 2e5 points a sweep is cut into four tasks or more, and every variable is bit for bit that
+    of one chunk (the wavy route decides its substitution from the whole sweep and sums each point's
+    series alone)."""
     wavy = {"scenario": "wavy", "parameters": {
         "domain": "periodic", "amplitudes": [0.5, 0.01], "wavenumbers": [1, 11], "n_harmonics": [1, 2],
         "a": [0.05, 0.2, 0.3, 0.5, 0.8], "x": {"start": -1.0, "stop": 1.0, "num": 20_000}}}
-    assert all(len(c) == 1 for c in sf.generate(wavy).chunks.values())
     graded = {"scenario": "graded_tangential", "parameters": {
         "profile": "parabolic", "R": 0.75, "contact_radius": 1e-3, "mu": 0.5, "E0": 1e9, "poisson": "holl_ratio",
         "k": [0.0, 0.3, 0.6, 0.9], "delta_x": {"start": 0.0, "stop": 1.4e-6, "num": 60_000}},
               "output": {"variables": ["force_ratio", "max_tangential_displacement"]}}
     cone = {**CONE, "parameters": {**CONE["parameters"], "y": {"start": -1, "stop": 1, "num": 30},
                                    "x": {"start": -1.5, "stop": 1.5, "num": 3000}}}
-    for recipe in (graded, cone):
+    for recipe in (wavy, graded, cone):
         cut = sf.generate(recipe)
         assert max(int(np.prod([len(c) for c in v.chunks])) for v in cut.data_vars.values() if v.chunks) >= 4
         one = sf.generate(recipe, chunks={d: -1 for d in cut.chunks}).compute()

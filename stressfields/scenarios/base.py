@@ -25,6 +25,7 @@ class Options(TypedDict):
     method: str        # the recipe's [method] method: "auto" or one of Scenario.methods
     rtol: float        # the accuracy target of quadrature and series
     physical: bool     # physical units (the recipe gave the scenario's physical_switch)
+    sweep: Mapping[str, Any]   # the recipe's values over the whole sweep (not this block's)
 
 
 class Evaluate(Protocol):

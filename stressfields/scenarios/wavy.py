@@ -160,9 +160,24 @@ def _evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options, peri
         pstar, length, half_width = 1.0, 1.0, 1.0
     x = np.asarray(p.get("x", 0.0), dtype=float) / half_width
     raw = wv.fields(names, x, a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics"),
-                    method=options["method"], rtol=options["rtol"])
+                    method=options["method"], rtol=options["rtol"],
+                    contact_points=_contact_points(options, a, half_width))
     factor = {PSTAR: pstar, DELTA_1: length, HALF_WIDTH: half_width}
     return {n: raw[n] * factor[_SCALE[n]] if n in _SCALE else raw[n] for n in names}
+
+
+def _contact_points(options: Options, a: np.ndarray, half_width) -> np.ndarray | None:
+    """Per contact of the block: how many x values of the whole recipe lie in its central contact
+    |x| <= a, so that method auto's choice of series for a contact (and so every value) does not
+    depend on how the sweep is cut into blocks.  None without the recipe's sweep (the physics then
+    counts the block's own points)."""
+    sweep = options.get("sweep")
+    if sweep is None:
+        return None
+    x_all = np.sort(np.abs(np.ravel(np.asarray(sweep.get("x", 0.0), dtype=float))))
+    # normalised mode: x is x/a, so the contact is |x| <= 1 whatever a; physical: |x| <= a lambda_1/2
+    limit = np.broadcast_to(np.asarray(half_width, dtype=float), a.shape)
+    return np.searchsorted(x_all, limit, side="right")
 
 
 def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:

@@ -85,7 +85,8 @@ def _ctx(two_a, amplitudes, wavenumbers, periodic_, n_harmonics, rtol, max_terms
 # --------------------------------------------------------------------------------- pressure
 
 def pressure(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
-             n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS, substitute=False):
+             n_harmonics=None, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS, substitute=False,
+             contact_points=None):
     """Contact pressure p(x)/p*, zero for |x| > a.
 
     Periodic: eqs. (10)-(12) with coefficients by DCT (docs/theory/wavy.md (W6), (W7)); non-periodic:
@@ -98,7 +99,10 @@ def pressure(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic:
     the non-periodic series error stays within the periodic series' own tolerance, rtol * scale,
     and that has at least ``SUBSTITUTE_MIN_POINTS`` points inside it (the test costs ~2 ms per
     contact); info then has "substituted" (bool), and error_estimate includes the correction there
-    (docs/theory/wavy.md (W26)).
+    (docs/theory/wavy.md (W26)).  ``contact_points`` (broadcasting with two_a_over_lambda1 and
+    n_harmonics) is that number of points as the caller counts it over its whole evaluation, so that
+    the choice, and every value, is the same however the caller cuts its points into calls; by
+    default the points of this call inside each contact are counted.
     """
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     shape, t, row, a = _reduced(c, x_over_a)      # periodic: folded into one period (|x| <= pi)
@@ -110,7 +114,12 @@ def pressure(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic:
     if not substitute:
         p[inside] = _periodic.closed_pressure(c.table, row[inside], t[inside])
         return p, c.info(shape, row)
-    many = np.bincount(np.ravel(row[inside]), minlength=c.table.K.size) >= SUBSTITUTE_MIN_POINTS
+    if contact_points is None:
+        many = np.bincount(np.ravel(row[inside]), minlength=c.table.K.size) >= SUBSTITUTE_MIN_POINTS
+    else:
+        count = np.zeros(c.table.K.size)
+        np.maximum.at(count, np.ravel(c.row), np.ravel(np.broadcast_to(contact_points, c.row.shape)))
+        many = count >= SUBSTITUTE_MIN_POINTS
     use, err = _substitution(c, many, amplitudes, wavenumbers, rtol, max_terms)
     sub = np.broadcast_to(use[c.row], shape)
     own = inside & ~sub
@@ -126,6 +135,8 @@ def pressure(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic:
 
 #: Chebyshev nodes on which the periodic correction is resolved (it is smooth and even in x/a)
 _PROBES = 32
+#: cos(pi k (j + 1/2) / _PROBES): row k, column j, the type-II DCT on the probes
+_DCT = np.cos(np.pi * np.arange(_PROBES)[:, None] * (np.arange(_PROBES)[None, :] + 0.5) / _PROBES)
 #: points inside a contact from which substituting pays: ~2 ms of test and table against ~30 ns
 #: saved per point (measured, one and three harmonics, 2a/lambda_1 = 1e-4 and 1e-3)
 SUBSTITUTE_MIN_POINTS = 100_000
@@ -144,8 +155,6 @@ def periodic_correction(two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmon
     about 0.4 (2a/lambda_1)^2 of the pressure. +inf where the interpolant is not resolved.
     Returns (bound, info) with info["scale"] = the periodic series' rtol scale.
     """
-    from scipy.fft import dct
-
     c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, True, n_harmonics, rtol, max_terms)
     shape = c.row.shape
     s = np.cos(np.pi * (np.arange(_PROBES) + 0.5) / _PROBES)
@@ -156,12 +165,18 @@ def periodic_correction(two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmon
     kw = dict(n_harmonics=N[None, :], rtol=probe_rtol, max_terms=max_terms)
     phi_p, ip = pressure_shape(s[:, None], w[None, :], amplitudes, wavenumbers, periodic=True, **kw)
     phi_n, inp = pressure_shape(s[:, None], w[None, :], amplitudes, wavenumbers, periodic=False, **kw)
-    coef = dct(phi_p - phi_n, type=2, axis=0) / _PROBES
+    # the Chebyshev coefficients (a type-II DCT) as a plain sum down the probes: each contact's
+    # coefficients then do not depend on which other contacts share the array (scipy's DCT of a
+    # 2-D array rounds differently with the number of columns: 1.4e-15 measured), so neither does
+    # the file's content hash on the chunking
+    # (numpy's sum over an axis is pairwise or sequential depending on the array's shape: with one
+    # column it groups the probes differently, so the sums run in a fixed order, series.row_dot)
+    coef = (2.0 / _PROBES) * series.row_dot(_DCT[:, None, :] * (phi_p - phi_n).T[None, :, :], np.ones(_PROBES))
     coef[0] *= 0.5
     lebesgue = 2.0 / np.pi * np.log(_PROBES) + 1.0
     noise = lebesgue * np.max(ip["error_estimate"] + inp["error_estimate"], axis=0)
-    tail = 4.0 * np.sum(np.abs(coef[-6:]), axis=0)
-    bound = np.sum(np.abs(coef), axis=0) + noise + tail
+    tail = 4.0 * series.row_sum(np.abs(coef[-6:]).T)
+    bound = series.row_sum(np.abs(coef).T) + noise + tail
     resolved = tail <= 1e-2 * np.maximum(bound, 1e-300) + 1e-15
     bound = np.where(resolved & np.all(ip["converged"] & inp["converged"], axis=0), bound, np.inf)
     return bound[c.row].reshape(shape), {"scale": c.table.scale[c.row].reshape(shape)}
@@ -235,7 +250,7 @@ def peak_pressure(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool
     if c.periodic:
         return _periodic.closed_peak(t, c.row), c.info(c.row.shape)
     sign = np.where(np.arange(t.D.shape[1]) % 2 == 0, 1.0, -1.0)
-    p0 = (t.D @ sign)[c.row]
+    p0 = series.row_dot(t.D, sign)[c.row]
     return p0, c.info(p0.shape)
 
 
@@ -362,7 +377,7 @@ def contact_validity(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
     if c.periodic:
         edge = _periodic.closed_shape(c.table, rows, np.ones(rows.shape))
     else:
-        edge = c.table.D[rows] @ (2.0 * np.arange(c.table.D.shape[1]) + 1.0)
+        edge = series.row_dot(c.table.D[rows], 2.0 * np.arange(c.table.D.shape[1]) + 1.0)
     pos = np.searchsorted(rows, c.row)
     take = lambda v: v[pos]
     p_ok, g_ok = v_phi >= -atol, v_gap >= -atol

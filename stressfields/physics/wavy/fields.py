@@ -26,12 +26,15 @@ _PEAK = ("validity", "peak_pressure", "n_terms", "error_estimate", "converged")
 
 def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayLike, amplitudes: ArrayLike,
            wavenumbers: ArrayLike, *, periodic: bool, n_harmonics: ArrayLike | None = None, method: str = "auto",
-           rtol: float = DEFAULT_RTOL, max_terms: int = DEFAULT_MAX_TERMS) -> dict[str, np.ndarray]:
+           rtol: float = DEFAULT_RTOL, max_terms: int = DEFAULT_MAX_TERMS,
+           contact_points: ArrayLike | None = None) -> dict[str, np.ndarray]:
     """The requested quantities of one domain, normalised as in docs/theory/wavy.md (W2).
 
     Arguments as in ``api`` (x_over_a = x/a, the harmonic table, ``periodic`` for the periodic
     surface, ``n_harmonics`` the rows used); ``method`` one of ``routes.METHODS``, ``rtol`` the
-    series tolerance.  Returns {name: array} for ``names`` (any of ``FIELDS``), in these units:
+    series tolerance; ``contact_points`` the number of points inside each contact over the caller's
+    whole evaluation, which decides where ``auto`` substitutes (``api.pressure``; default: counted
+    in this call).  Returns {name: array} for ``names`` (any of ``FIELDS``), in these units:
 
     * pressure -- p(x)/p*, the series (W9) of the domain, (W5)-(W8); with ``auto`` the non-periodic
       series where it is within rtol of a narrow periodic contact's, (W26); with an
@@ -71,7 +74,8 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
         if approx is not None:
             out["pressure"] = approx(x_over_a, *table, n_harmonics=n_harmonics)
         else:
-            value, info = api.pressure(x_over_a, *table, **series, substitute=substitutes(method))
+            value, info = api.pressure(x_over_a, *table, **series, substitute=substitutes(method),
+                                       contact_points=contact_points)
             out["pressure"] = value
             substituted = info.get("substituted", np.False_)
     if "uz" in wanted:

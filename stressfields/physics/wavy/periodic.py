@@ -46,8 +46,10 @@ def coefficients(a, n, L):
     M = 4 * L
     theta = (2.0 * np.arange(M) + 1.0) * np.pi / (2.0 * M)
     alpha = np.tan(0.5 * np.asarray(a, dtype=float))
-    phi = 0.5 * np.sin(2.0 * n[None, :, None] * np.arctan(alpha[:, None, None] * np.cos(theta)))
-    A = scipy.fft.dct(phi, type=2, axis=-1) / M
+    phi = 0.5 * np.sin(2.0 * n[None, :, None] * np.arctan(alpha.reshape(-1)[:, None, None] * np.cos(theta)))
+    # one DCT per angle: a batched DCT may round a row differently with the number of rows, and an
+    # angle's coefficients must not depend on the other angles of the call
+    A = np.stack([scipy.fft.dct(row, type=2, axis=-1) for row in phi]) / M if len(phi) else phi
     return A[..., 1:2 * L:2]
 
 
@@ -169,14 +171,36 @@ class OutsideTable:
     The integral is done numerically in
     tau = sqrt((x-a)/(pi-a)) (removes the (x-a)^(1/2) edge behaviour) on panels fine enough for
     the profile's shortest wave, for w(x) and for the edge; 16-point Gauss-Legendre per panel.
-    Cumulative panel sums make later evaluations cost one panel each.
+    Cumulative panel sums make later evaluations cost one panel each.  The panels of a row follow
+    its own shortest wave (rows with equal n_max share a panel table), so a row's gap does not
+    depend on the other rows tabulated with it.
     """
 
     def __init__(self, table, delta_ratio, n, rows):
-        self.table, self.dr, self.n = table, delta_ratio, n
+        self.rows = np.asarray(rows)
+        n_max = np.array([int(np.max(n[: int(N)])) for N in table.N[self.rows]], dtype=int)
+        self.parts = {int(m): _Panels(table, self.rows[n_max == m], int(m)) for m in np.unique(n_max)}
+        self.part = np.full(len(table.K), -1)
+        self.part[self.rows] = n_max
+
+    def gap(self, row, tau):
+        """gap/Delta_1 at tau in [0, 1] for table rows ``row`` (same shape)."""
+        row, tau = np.broadcast_arrays(np.asarray(row), np.asarray(tau, dtype=float))
+        out = np.empty(row.shape)
+        key = self.part[row]
+        for m, part in self.parts.items():
+            sel = key == m
+            out[sel] = part.gap(row[sel], tau[sel])
+        return out
+
+
+class _Panels:
+    """The panel table of OutsideTable for rows sharing the shortest wave 2 pi/n_max."""
+
+    def __init__(self, table, rows, n_max):
+        self.table = table
         self.rows = np.asarray(rows)
         a = table.a[self.rows][:, None]
-        n_max = int(np.max(n[: int(np.max(table.N[self.rows]))]))
         u = np.linspace(0.0, 1.0, 25)[None, :]
         tau_x = np.sqrt(np.linspace(0.0, 1.0, 2 * n_max + 9))[None, :] * np.ones_like(a)
         ww = np.linspace(0.0, 1.0, n_max + 9)[1:-1][None, :]
@@ -199,15 +223,21 @@ class OutsideTable:
         half = 0.5 * (hi - lo)
         nodes = (0.5 * (hi + lo))[..., None] + half[..., None] * _GL_NODES
         f = self._integrand(np.broadcast_to(row[..., None], nodes.shape), nodes)
-        return half * np.sum(f * _GL_WEIGHTS, axis=-1)
+        return half * series.row_dot(f, _GL_WEIGHTS)
 
     def gap(self, row, tau):
         """gap/Delta_1 at tau in [0, 1] for table rows ``row`` (same shape)."""
         row, tau = np.broadcast_arrays(np.asarray(row), np.asarray(tau, dtype=float))
         k_row = self.local[row]
         P = self.B.shape[1]
-        flat = (self.B + 2.0 * np.arange(len(self.rows))[:, None]).ravel()
-        k = np.searchsorted(flat, tau + 2.0 * k_row, side="right") - 1 - k_row * P
+        # the panel of each point against its own row's breakpoints (a search in one flat array with
+        # row offsets would round tau + offset, and so the panel, with the row's place in the table)
+        k = np.empty(tau.shape, dtype=int)
+        kf, rf, tf = k.reshape(-1), k_row.reshape(-1), tau.reshape(-1)
+        step = max(1, (1 << 22) // P)
+        for i0 in range(0, tf.size, step):
+            sl = slice(i0, i0 + step)
+            kf[sl] = np.count_nonzero(self.B[rf[sl]] <= tf[sl, None], axis=1) - 1
         k = np.clip(k, 0, P - 2)
         lo = self.B[k_row, k]
         return self.cum[k_row, k] + self._integrate(row, lo, tau)
@@ -221,8 +251,6 @@ _MAGNITUDE_TERMS = 64
 #: unit roundoff u = eps/2; libm sin/cos are taken as good to 1 ulp (2u absolute for |cos| <= 1;
 #: measured here 0.52 ulp on 10^6 arguments up to 1000 against 80-bit values)
 _U = 0.5 * series.EPS
-#: rows of the cosine-weight matrix built at once (memory top * rows * 8 bytes)
-_BLOCK = 1 << 20
 
 
 @functools.lru_cache(maxsize=4)
@@ -252,18 +280,16 @@ def legendre_by_cosines(a, top):
     ja = j[None, :] * a[:, None]
     cosj = np.cos(ja)
     arg = np.abs(np.sin(ja)) * ja
-    P, E = np.empty((a.size, top)), np.empty((a.size, top))
-    rows = max(1, _BLOCK // max(top, 1))
-    for k0 in range(0, top, rows):
-        k = np.arange(k0, min(top, k0 + rows))[:, None]
-        m = np.arange(k[-1, 0] // 2 + 1)[None, :]
-        ok = 2 * m <= k
-        kk, mm = np.broadcast_arrays(k, m)
-        col = (kk - 2 * mm)[ok]
-        G = np.zeros((k.shape[0], top))
-        G[(kk - k0)[ok], col] = g[mm[ok]] * g[(kk - mm)[ok]] * np.where(col > 0, 2.0, 1.0)
-        P[:, k0:k0 + k.shape[0]] = cosj @ G.T
-        E[:, k0:k0 + k.shape[0]] = _U * (arg @ G.T + 0.5 * k[:, 0] + 9.0)
+    P, A = np.zeros((a.size, top)), np.zeros((a.size, top))
+    # added in order of the cosine index j for every k (not a matrix product, whose grouping follows
+    # the number of rows): a value does not depend on the other angles or on top
+    for jj in range(top):
+        k = np.arange(jj, top, 2)                   # k - 2m = jj
+        m = (k - jj) // 2
+        weight = g[m] * g[k - m] * (2.0 if jj > 0 else 1.0)
+        P[:, k] += cosj[:, jj:jj + 1] * weight[None, :]
+        A[:, k] += arg[:, jj:jj + 1] * weight[None, :]
+    E = _U * (A + 0.5 * j[None, :] + 9.0)
     return P, E
 
 
@@ -276,8 +302,9 @@ def closed_coefficients(a, delta_ratio, n, N, *, bound=False):
     top = int(np.max(used))
     P, E = legendre_by_cosines(a, top)
     B, errB = np.zeros((a.size, top)), np.zeros((a.size, top))
-    # sum over the harmonics: one product rounding each for w_i and w_i P, up to len(used) additions
-    acc = (len(used) + 2) * _U
+    # sum over the harmonics: one product rounding each for w_i and w_i P, up to N additions (the
+    # row's own N: a row's bound must not depend on the other rows' harmonic counts)
+    acc = (N[:, None] + 2) * _U
     for i in range(len(used)):
         ni = int(n[i])
         k = ni - 1 - np.arange(ni)
@@ -294,7 +321,8 @@ def rounding_bound(a, B, errB, K, reach):
     product and K sums per term."""
     j = np.arange(B.shape[1])
     absB = np.abs(B)
-    return errB.sum(axis=1) + _U * (absB @ (2.0 * j + 1.0) * reach + absB.sum(axis=1) * (K + 4.0))
+    # column-order sums (series.row_dot): a row's bound does not depend on the others or the width
+    return series.row_sum(errB) + _U * (series.row_dot(absB, 2.0 * j + 1.0) * reach + series.row_sum(absB) * (K + 4.0))
 
 
 def build_table(a_values, N_values, delta_ratio, n, *, rtol):
@@ -307,7 +335,7 @@ def build_table(a_values, N_values, delta_ratio, n, *, rtol):
     B, errB = closed_coefficients(a, delta_ratio, n, N, bound=True)
     K = np.array([int(np.max(n[:k])) for k in N])
     errQ = rounding_bound(a, B, errB, K, a)
-    absQ = np.abs(B).sum(axis=1)
+    absQ = series.row_sum(np.abs(B))
     # p = R Q with R <= sin(a/2) good to 9u sin(a/2) (W31), one more product; phi = (a/2) sqrt(sinc
     # s2/(1 + t)) Q with the factor <= a/2 good to 8u of itself (W31)
     err = np.sin(0.5 * a) * (errQ + 10.0 * _U * absQ)
@@ -356,7 +384,7 @@ def closed_shape(table, row, t):
 
 def closed_peak(table, rows):
     """p(0)/p* = sin(a/2) sum_j B_j, docs/theory/wavy.md (W30)."""
-    return np.sin(0.5 * table.a[rows]) * table.D[rows].sum(axis=-1)
+    return np.sin(0.5 * table.a[rows]) * series.row_sum(table.D[rows])
 
 
 def closed_gap_slope(table, row, x):

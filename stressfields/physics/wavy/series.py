@@ -35,8 +35,10 @@ import numpy as np
 
 from .profile import EPS
 
-#: rows of terms evaluated at once (memory ~ 8 bytes * elements * block)
-_BLOCK_ELEMENTS = 1 << 21
+#: terms and points evaluated at once (memory ~ 8 bytes * _BLOCK_TERMS * _CHUNK_ROWS = 4 MB); fixed,
+#: so that neither depends on the other points of the array (see ``_series_sum``)
+_BLOCK_TERMS = 64
+_CHUNK_ROWS = 8192
 
 
 @dataclass
@@ -132,116 +134,136 @@ def build_table(a_values, N_values, delta_ratio, n, *, is_periodic, rtol, max_te
     mod = _module(is_periodic)
     a_values = np.asarray(a_values, dtype=float)
     N_values = np.asarray(N_values, dtype=int)
-    na, UN = a_values.size, N_values.size
-    w = 2.0 * delta_ratio * n
-    n_max = np.max(n[: np.max(N_values)])
-    L = np.minimum(_pow2(1.25 * mod.window_terms(a_values, n_max, rtol) + 8), _pow2(max_terms))
-    results = [None] * na
-    pending = np.arange(na)
-    while pending.size:
-        still = []
-        for Lw in np.unique(L[pending]):
-            idx = pending[L[pending] == Lw]
-            C = mod.coefficients(a_values[idx], n, int(Lw))               # (k, Nh, Lw)
-            r = _truncate(w[None, :, None] * C, N_values, rtol, Lw >= max_terms, mod.COEFFICIENT_NOISE, weighted)
-            for j, ia in enumerate(idx):
-                if r["done"][j]:
-                    results[ia] = {key: val[j] for key, val in r.items()}
-                else:
-                    still.append(ia)
-        pending = np.asarray(still, dtype=int)
-        L[pending] = np.minimum(2 * L[pending], _pow2(max_terms))
-    K = np.stack([res["K"] for res in results]).reshape(-1)
-    Kmax = int(K.max())
-    D = np.zeros((na * UN, Kmax))
-    for ia, res in enumerate(results):
-        for iN in range(UN):
-            k = res["K"][iN]
-            D[ia * UN + iN, :k] = res["D"][iN, :k]
-    cat = lambda key: np.stack([res[key] for res in results]).reshape(-1)
-    return SeriesTable(periodic=is_periodic, a=np.repeat(a_values, UN), N=np.tile(N_values, na),
+    # each harmonic count alone: its window (from its own shortest wave) and its stopping rule
+    # must not depend on which other counts are tabulated with it
+    parts = [_build_one(a_values, int(N), delta_ratio, n, mod, rtol, max_terms, weighted) for N in N_values]
+    UN = N_values.size
+    K = np.stack([part["K"] for part in parts], axis=1).reshape(-1)       # row = ia * UN + iN
+    D = np.zeros((a_values.size * UN, int(K.max())))
+    for iN, part in enumerate(parts):
+        for ia in range(a_values.size):
+            k = part["K"][ia]
+            D[ia * UN + iN, :k] = part["D"][ia][:k]
+    cat = lambda key: np.stack([part[key] for part in parts], axis=1).reshape(-1)
+    return SeriesTable(periodic=is_periodic, a=np.repeat(a_values, UN), N=np.tile(N_values, a_values.size),
                        D=D, K=K, err=cat("err"), err_shape=cat("err_shape"),
                        converged=cat("converged"), scale=cat("scale"))
 
 
-def _blocks(Ks):
-    """Yield (n_active, m0, m1): elements sorted by decreasing K need terms m0..m1-1."""
-    m0 = 0
-    Kmax = int(Ks[0]) if Ks.size else 0
-    while m0 < Kmax:
-        n_act = int(np.searchsorted(-Ks, -m0, side="left"))  # number of elements with K > m0
-        B = int(max(1, min(512, _BLOCK_ELEMENTS // max(n_act, 1))))
-        m1 = min(m0 + B, Kmax)
-        yield n_act, m0, m1
-        m0 = m1
+def _build_one(a_values, N, delta_ratio, n, mod, rtol, max_terms, weighted):
+    """Truncation of every contact angle for one harmonic count N (first N harmonics only).
+    Loops only over window sizes (powers of two), never over points; each angle's window and
+    result depend on that angle alone."""
+    n_used = n[:N]
+    w = 2.0 * delta_ratio[:N] * n_used
+    L = np.minimum(_pow2(1.25 * mod.window_terms(a_values, np.max(n_used), rtol) + 8), _pow2(max_terms))
+    results = [None] * a_values.size
+    pending = np.arange(a_values.size)
+    last_N = np.array([N])
+    while pending.size:
+        still = []
+        for Lw in np.unique(L[pending]):
+            idx = pending[L[pending] == Lw]
+            C = mod.coefficients(a_values[idx], n_used, int(Lw))          # (k, N, Lw)
+            r = _truncate(w[None, :, None] * C, last_N, rtol, Lw >= max_terms, mod.COEFFICIENT_NOISE, weighted)
+            for j, ia in enumerate(idx):
+                if r["done"][j]:
+                    results[ia] = {key: val[j][0] for key, val in r.items() if key != "done"}
+                else:
+                    still.append(ia)
+        pending = np.asarray(still, dtype=int)
+        L[pending] = np.minimum(2 * L[pending], _pow2(max_terms))
+    return {key: [res[key] for res in results] if key == "D" else np.array([res[key] for res in results])
+            for key in ("D", "K", "err", "err_shape", "converged", "scale")}
 
 
-def _sorted(K_el, row, *arrays):
-    """Flatten and order elements by decreasing number of terms (active prefix per block)."""
-    row = np.asarray(row).reshape(-1)
-    K_el = np.asarray(K_el).reshape(-1)
+def row_dot(M, v):
+    """sum_j M[:, j] v[j], added column by column in order j = 0, 1, ...
+
+    A matrix product or numpy's pairwise ``sum`` groups the terms by the shape of the whole array
+    (BLAS kernels by the number of rows, pairwise sums by the row length), so a row's value would
+    change in the last bits with its neighbours and a table's width; in column order each row is
+    summed alone, and trailing zero columns leave it unchanged.
+    """
+    M = np.asarray(M, dtype=float)
+    out = np.zeros(M.shape[:-1])
+    for j in range(M.shape[-1]):
+        out += M[..., j] * v[j]
+    return out
+
+
+def row_sum(M):
+    """sum_j M[..., j] in column order (see ``row_dot``)."""
+    M = np.asarray(M, dtype=float)
+    out = np.zeros(M.shape[:-1])
+    for j in range(M.shape[-1]):
+        out += M[..., j]
+    return out
+
+
+def _series_sum(table, row, arg, K_el, terms):
+    """sum_{m < K_el} D[row, m] terms(arg, k = 2m+1) per element, each element's terms added in order
+    m = 0, 1, ... (``row_dot``): a point's value does not depend on which other points share the
+    array.  Points are taken in chunks of ``_CHUNK_ROWS`` (sorted by decreasing K, so a chunk stops
+    at its own longest series) and terms in blocks of ``_BLOCK_TERMS`` to bound memory."""
+    shape = np.broadcast(row, arg).shape
+    row, arg = (np.ravel(v) for v in np.broadcast_arrays(row, arg))
+    K_el = np.broadcast_to(np.asarray(K_el), shape).ravel()
     order = np.argsort(-K_el, kind="stable")
-    return order, K_el[order], row[order], [np.asarray(a, dtype=float).reshape(-1)[order] for a in arrays]
-
-
-def _gather(table, row_s, n_act, m0, m1):
-    return table.D[row_s[:n_act, None], np.arange(m0, m1)[None, :]]
+    row_s, arg_s, K_s = row[order], np.asarray(arg, dtype=float)[order], K_el[order]
+    width = table.D.shape[1]
+    out = np.zeros(row_s.size)
+    for i0 in range(0, row_s.size, _CHUNK_ROWS):
+        r, x, Ks = row_s[i0:i0 + _CHUNK_ROWS], arg_s[i0:i0 + _CHUNK_ROWS], K_s[i0:i0 + _CHUNK_ROWS]
+        acc = out[i0:i0 + _CHUNK_ROWS]
+        for m0 in range(0, min(int(Ks[0]) if Ks.size else 0, width), _BLOCK_TERMS):
+            n_act = int(np.searchsorted(-Ks, -m0, side="left"))   # elements with K > m0
+            m = np.arange(m0, min(m0 + _BLOCK_TERMS, width))
+            k = 2.0 * m + 1.0
+            # terms m >= an element's own K are not added (power_sum cuts K per element; the table
+            # holds zeros there otherwise): which terms count is the element's own affair
+            # terms along the rows of T (one contiguous row per m: the additions below stream)
+            T = terms(x[None, :n_act], k[:, None]) * table.D[r[None, :n_act], m[:, None]]
+            T = np.where(m[:, None] < Ks[None, :n_act], T, 0.0)
+            for j in range(m.size):
+                acc[:n_act] += T[j]
+    res = np.empty_like(out)
+    res[order] = out
+    return res.reshape(shape)
 
 
 def sine_sum(table, row, theta, *, over_sin=False):
     """sum_m D[row, m] sin((2m+1) theta), or with each term divided by sin(theta)
     (= U_2m(cos theta), equal to 2m+1 at theta = 0).  theta in [0, pi/2]."""
-    shape = np.broadcast(row, theta).shape
-    row, theta = np.broadcast_arrays(row, theta)
-    order, Ks, row_s, (th,) = _sorted(table.K[row], row, theta)
-    out = np.zeros(th.size)
-    st = np.sin(th)
-    for n_act, m0, m1 in _blocks(Ks):
-        k = 2.0 * np.arange(m0, m1) + 1.0
-        s = np.sin(th[:n_act, None] * k[None, :])
-        if over_sin:
-            s = np.where(st[:n_act, None] > 0, s / np.where(st > 0, st, 1.0)[:n_act, None], k[None, :])
-        out[:n_act] += np.sum(_gather(table, row_s, n_act, m0, m1) * s, axis=1)
-    res = np.empty_like(out)
-    res[order] = out
-    return res.reshape(shape)
+    def terms(th, k):
+        s = np.sin(th * k)
+        if not over_sin:
+            return s
+        st = np.sin(th)
+        return np.where(st > 0, s / np.where(st > 0, st, 1.0), k)
+
+    return _series_sum(table, row, theta, table.K[np.asarray(row)], terms)
 
 
 def power_sum(table, row, w):
     """sum_m D[row, m] w^(2m+1) for 0 <= w <= 1 (outside-contact slope, periodic)."""
-    shape = np.broadcast(row, w).shape
-    row, w = np.broadcast_arrays(row, w)
-    w = np.asarray(w, dtype=float)
+    row, w = np.broadcast_arrays(np.asarray(row), np.asarray(w, dtype=float))
     # terms with w^(2m+1) < 1e-18 cannot matter (|D_m| <= sum_i |w_i|): skip them per element
     with np.errstate(divide="ignore"):
         m_need = np.where(w < 1.0, np.ceil(0.5 * (np.log(1e-18) / np.log(np.clip(w, 1e-300, 1.0 - 1e-16)) - 1.0)) + 1,
                           np.inf)
     K_el = np.minimum(table.K[row], np.maximum(m_need, 1)).astype(int)
-    order, Ks, row_s, (ws,) = _sorted(K_el, row, w)
-    out = np.zeros(ws.size)
-    for n_act, m0, m1 in _blocks(Ks):
-        k = 2.0 * np.arange(m0, m1) + 1.0
-        out[:n_act] += np.sum(_gather(table, row_s, n_act, m0, m1) * ws[:n_act, None] ** k[None, :], axis=1)
-    res = np.empty_like(out)
-    res[order] = out
-    return res.reshape(shape)
+    return _series_sum(table, row, w, K_el, lambda x, k: x ** k)
+
+
+def _log_terms(e, k):
+    km1 = np.where(k > 1, k - 1, 1.0)
+    # expm1 keeps the O(eta^2) result accurate next to the edge (eta -> 0)
+    G = 0.5 * (-np.expm1(-km1 * e) / km1 + np.expm1(-(k + 1) * e) / (k + 1))
+    return np.where(k > 1, G, 0.5 * (e + 0.5 * np.expm1(-2.0 * e)))
 
 
 def log_integral_sum(table, row, eta):
     """sum_m D[row, m] G_{2m+1}, G_k = int_1^t w^k dt = (1/2)[(1-w^(k-1))/(k-1) - (1-w^(k+1))/(k+1)],
     w = exp(-eta), t = cosh(eta) (non-periodic, outside the contact); G_1 = (eta - (1-w^2)/2)/2."""
-    shape = np.broadcast(row, eta).shape
-    row, eta = np.broadcast_arrays(row, eta)
-    order, Ks, row_s, (es,) = _sorted(table.K[row], row, eta)
-    out = np.zeros(es.size)
-    for n_act, m0, m1 in _blocks(Ks):
-        k = 2.0 * np.arange(m0, m1) + 1.0
-        e = es[:n_act, None]
-        km1 = np.where(k > 1, k - 1, 1.0)
-        # expm1 keeps the O(eta^2) result accurate next to the edge (eta -> 0)
-        G = 0.5 * (-np.expm1(-km1 * e) / km1 + np.expm1(-(k + 1) * e) / (k + 1))
-        G = np.where(k[None, :] > 1, G, 0.5 * (e + 0.5 * np.expm1(-2.0 * e)))
-        out[:n_act] += np.sum(_gather(table, row_s, n_act, m0, m1) * G, axis=1)
-    res = np.empty_like(out)
-    res[order] = out
-    return res.reshape(shape)
+    return _series_sum(table, row, eta, table.K[np.asarray(row)], _log_terms)

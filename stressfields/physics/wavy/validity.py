@@ -74,16 +74,16 @@ def _grid_values(table, rows, M, Kb, *, shape):
     G = M // 2 + 1
     out = np.empty((rows.size, G))
     theta = np.linspace(0.0, 0.5 * np.pi, G)
-    step = max(1, (1 << 22) // (2 * M))
-    for i0 in range(0, rows.size, step):
-        r = rows[i0:i0 + step]
-        c = np.zeros((r.size, 2 * M), dtype=complex)
-        c[:, 1:2 * K:2] = table.D[r, :K]
-        S = np.fft.ifft(c, axis=1)[:, :G].imag * (2 * M)
+    # one row at a time: a batched FFT (and a matrix product) may round a row differently with the
+    # number of rows, and the grid values are candidates of the result
+    for i, r in enumerate(rows):
+        c = np.zeros(2 * M, dtype=complex)
+        c[1:2 * K:2] = table.D[r, :K]
+        S = np.fft.ifft(c)[:G].imag * (2 * M)
         if shape:
-            S[:, 1:] /= np.sin(theta[1:])
-            S[:, 0] = table.D[r, :K] @ (2.0 * np.arange(K) + 1.0)
-        out[i0:i0 + step] = S
+            S[1:] /= np.sin(theta[1:])
+            S[0] = series.row_dot(table.D[r, :K], 2.0 * np.arange(K) + 1.0)
+        out[i] = S
     return theta, out
 
 
@@ -97,8 +97,11 @@ def _extreme_closed(table, rows, shape):
         return (periodic.closed_shape(table, rows[k], t) if shape
                 else -periodic.closed_pressure(table, rows[k], t))
 
-    G = 16 * int(np.max(table.K[rows])) + 65
-    th, v = minimize_rows(f, np.zeros(rows.size), np.full(rows.size, 0.5 * np.pi), G)
+    th, v = np.empty(rows.size), np.empty(rows.size)
+    for K in np.unique(table.K[rows]):     # the grid of a row follows its own K, not its neighbours'
+        sel = np.flatnonzero(table.K[rows] == K)
+        g = lambda k, theta, sel=sel: f(sel[k], theta)
+        th[sel], v[sel] = minimize_rows(g, np.zeros(sel.size), np.full(sel.size, 0.5 * np.pi), 16 * int(K) + 65)
     return np.clip(np.cos(th), 0.0, 1.0), (v if shape else -v)
 
 
@@ -150,9 +153,13 @@ def min_gap_outside(table, outside, rows, delta_ratio, n, *, tau0=1e-3):
     """Per row: (x/a, min gap/Delta_1) over a + 1e-6 (pi - a) <= x <= pi (tau >= tau0; at the
     edge itself the gap is 0 by construction).  Grid: >= 4 points per shortest wave."""
     rows = np.asarray(rows)
-    n_max = int(np.max(n[: int(np.max(table.N[rows]))]))
-    G = 4 * n_max + 129
+    # the grid of a row follows its own shortest wave, not its neighbours'
+    n_max = np.array([int(np.max(n[: int(N)])) for N in table.N[rows]], dtype=int)
+    tau, v = np.empty(rows.size), np.empty(rows.size)
+    for m in np.unique(n_max):
+        sel = np.flatnonzero(n_max == m)
+        r = rows[sel]
+        f = lambda k, t, r=r: gap_outside(table, outside, r[k], t, delta_ratio, n)
+        tau[sel], v[sel] = minimize_rows(f, np.full(sel.size, tau0), np.ones(sel.size), 4 * int(m) + 129)
     a = table.a[rows]
-    f = lambda k, tau: gap_outside(table, outside, rows[k], tau, delta_ratio, n)
-    tau, v = minimize_rows(f, np.full(rows.size, tau0), np.ones(rows.size), G)
     return (a + (np.pi - a) * tau * tau) / a, v
