@@ -40,12 +40,17 @@ NAMES = ("u_x", "u_y", "u_z")
 _KEYS = ("x", "y", "z")
 #: points per block of the surface rule (its (points x nodes) work arrays stay small)
 _CHUNK = 2048
+#: depths below this (times the radius of integration) take the surface rule (I44), see ``_sum``
+_SURFACE_DEPTH = 1e-290
 
 
-def _inv_s(S):
-    """1/S, set to 0 on the edge ring (S = 0), where it only appears with factors that vanish."""
+def _over_s(S, M, N):
+    """M/S and N/S (each <= S^(-1/2)), set to 0 on the edge ring (S = 0), where they only appear
+    with factors that vanish.  Not 1/S: at a subnormal depth next to the edge ring (z = 5e-324 a)
+    1/S overflows and the bounded products M^2/S, M N/S became inf."""
     with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(S > 0.0, 1.0 / np.where(S > 0.0, S, 1.0), 0.0)
+        safe = np.where(S > 0.0, S, 1.0)
+        return np.where(S > 0.0, M / safe, 0.0), np.where(S > 0.0, N / safe, 0.0)
 
 
 def _unit_coords(x, y, z, rm1):
@@ -62,10 +67,11 @@ def punch_displacement_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
     of |value| everywhere.  ``rm1``: r - 1 without rounding (see ``interior_hertz._geometry``)."""
     x, y, g = _unit_coords(x, y, z, rm1)
     nu = np.asarray(nu, dtype=x.dtype)
-    M, N, inv_s = g["M"], g["N"], _inv_s(g["S"])
+    M, N = g["M"], g["N"]
+    m_s, n_s = _over_s(g["S"], M, N)
     opm = 1.0 + M * M
-    ur_r = (M * M * inv_s * N - (1.0 - 2.0 * nu) / (1.0 + N)) / (math.pi * (1.0 - nu) * opm)
-    uz = (2.0 / math.pi) * (np.arctan2(1.0, M) + M * (N * N * inv_s) / (2.0 * (1.0 - nu)))
+    ur_r = (M * m_s * N - (1.0 - 2.0 * nu) / (1.0 + N)) / (math.pi * (1.0 - nu) * opm)
+    uz = (2.0 / math.pi) * (np.arctan2(1.0, M) + M * (N * n_s) / (2.0 * (1.0 - nu)))
     return {"x": x * ur_r, "y": y * ur_r, "z": uz}
 
 
@@ -73,17 +79,18 @@ def _sliding_punch_radial(g):
     """The radial functions of (I18) for the traction 1/sqrt(1 - r^2) along +x (a = 1):
     (I38): Phi, g_z, D Psi and the products z D g_z, D g, z P, each bounded (every 1/S comes with
     M N, M^2 or N^2)."""
-    M, N, inv_s = g["M"], g["N"], _inv_s(g["S"])
+    M, N = g["M"], g["N"]
+    m_s, n_s = _over_s(g["S"], M, N)
     m2, opm, opn = M * M, 1.0 + M * M, 1.0 + N
     atan = np.arctan2(1.0, M)
-    zdgz = 2.0 * math.pi * (M * N * inv_s) * (N - m2 * (2.0 + N)) / (opm * opn) ** 2
+    zdgz = 2.0 * math.pi * (M * n_s) * (N - m2 * (2.0 + N)) / (opm * opn) ** 2
     return dict(
         Phi=2.0 * math.pi * atan,
         gz=2.0 * math.pi / (opm * opn),
         DPsi=math.pi * (atan + M / opm),
         zDgz=zdgz,
-        Dg=zdgz + 2.0 * math.pi * M * (m2 * inv_s) / (opm * opm),
-        zP=-2.0 * math.pi * (m2 * inv_s) * N / opm,
+        Dg=zdgz + 2.0 * math.pi * M * (M * m_s) / (opm * opm),
+        zP=-2.0 * math.pi * (M * m_s) * N / opm,
     )
 
 
@@ -246,6 +253,11 @@ def _sum(x, y, z, b, nu, profile, rtol, unit, kernel):
     """Sigma(b) = int_0^b g'(rho) u(x / rho) d rho: the stresses' panels (I16)-(I17) where z > 0 or
     r > b, the surface rule (I44) at z = 0, r <= b."""
     out = {k: np.zeros(x.size) for k in _KEYS}
+    # below _SURFACE_DEPTH b the surface value: u is continuous and |u(z) - u(0)| <= C z^min(1, 1 + m0)
+    # (the stresses grow at most like rho^m0 at a tip, d^(-1/2) next to an edge), 1e-145 delta or less
+    # for every tip exponent m0 >= -1/2, while the panels of (I16) lose z to subnormal rounding there
+    # (NaN at z = 1e-310 a)
+    z = np.where(z < _SURFACE_DEPTH * b, 0.0, z)
     top = (z == 0.0) & (np.hypot(x, y) <= b)
     i = np.flatnonzero(~top)
     if i.size:

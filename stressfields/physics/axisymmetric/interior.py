@@ -184,7 +184,14 @@ def _superpose(x, y, z, a, nu, profile, rtol, kernel, lower=None):
         part = _superpose_chunk(x[sl], y[sl], z[sl], a[sl], nu[sl], profile, n, q, kernel, lower[sl])
         for k, v in part.items():
             out[k][sl] = v
-    return out
+    return _unresolved_as_nan(out)
+
+
+def _unresolved_as_nan(out):
+    """Every exact value of (I15), (I28), (I33), (I42) at z > 0 is finite: a non-finite sum is a
+    point the rule does not resolve (e.g. z = 5e-324 a, where z / rho is subnormal and the layer
+    has no width in double precision); it is NaN, never +-inf, which would claim an infinite limit."""
+    return {k: np.where(np.isfinite(v), v, math.nan) for k, v in out.items()}
 
 
 def _breakpoints(r, z, a, profile, q, lower):
@@ -208,15 +215,19 @@ def _breakpoints(r, z, a, profile, q, lower):
         b1 = np.where(cut, b1, np.minimum(b1, knots[0]))   # the first panel must not straddle a knot's cusp
     right = np.maximum(a - rho_s, 0.0)
     left = np.where(cut, rho_s - lower, 0.5 * rho_s)
-    with np.errstate(divide="ignore"):
-        kr = np.where(right > h0, np.ceil(np.log(right / h0) / math.log(q)), 0.0)
-        kl = np.where(left > h0, np.ceil(np.log(left / h0) / math.log(q)), 0.0)
+    # log(right) - log(h0), not log(right / h0), and h0 q^k by repeated products, not q ** k: at a
+    # subnormal depth (z = 5e-324 a) the ratio and q^k overflowed (OverflowError)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        log_h0 = np.log(h0)
+        kr = np.where(right > h0, np.ceil((np.log(right) - log_h0) / math.log(q)), 0.0)
+        kl = np.where(left > h0, np.ceil((np.log(left) - log_h0) / math.log(q)), 0.0)
     kmax = int(max(kr.max(initial=0.0), kl.max(initial=0.0)))
     cols = [b1 - rho_s, np.zeros_like(r), right]
+    step = h0.copy()
     for k in range(kmax):
-        step = h0 * q ** k
         cols.append(np.where(k < kr, step, right))
         cols.append(np.where(k < kl, -step, right))
+        step = step * q
     offsets = np.column_stack(cols)
     for kn in knots:
         # a geometric end within 1e-6 of a knot would leave the knot's cusp just inside a panel
@@ -329,7 +340,7 @@ def _superpose_flat(x, y, z, a, nu, profile, rtol, kernel, lower=None):
             part = _superpose_chunk(*args, n, q, (kernel[2], kernel[1]), lower[sl])
         for k, v in part.items():
             out[k][sl] = v
-    return out
+    return _unresolved_as_nan(out)
 
 
 def _bernstein(re, im):
@@ -487,9 +498,9 @@ def _rule(rho_s, offsets, profile, n, cut=False):
     m0 = float(profile.tip_exponent)
     tj, wj = gauss_jacobi(n + 4, m0) if m0 != 0.0 else gauss_legendre(n + 4)
     first = b1 * tj[None, :]
-    first_w = b1 ** (1.0 + m0) * wj[None, :]
-    if m0 != 0.0:
-        first_w = first_w / np.where(first > 0.0, first, 1.0) ** m0
+    # b1^(1 + m0) w_j / rho_j^m0 = b1 w_j / t_j^m0 (t_j > 0): the powers of b1 under- or overflow
+    # next to the axis (b1 = 5e-301 at r = 1e-300 a: NaN weights for m0 = 2)
+    first_w = b1 * (wj / tj ** m0)[None, :]
     first_w = np.where(np.reshape(cut, (-1, 1)), 0.0, first_w)      # [0, lower] is not integrated
     lo, hi = offsets[:, :-1], offsets[:, 1:]
     empty = hi <= lo
@@ -517,7 +528,7 @@ def _live(nd: _Nodes):
     x / rho would overflow carry no weight (a punch of radius rho contributes O(rho^2) there)."""
     live = nd.weights > 0.0
     reach = np.hypot(np.hypot(nd.x, nd.y), nd.z)[:, None]
-    live &= nd.rho > 1e-150 * reach
+    live &= nd.rho > 1e-60 * reach          # as ``_flat_nodes``: nearer 0, z/rho overflowed (I53)
     rho = np.where(live, nd.rho, 1.0)
     rm1 = np.where(live, (nd.r_minus_rho_s[:, None] - nd.delta) / rho, 0.0)
     return live, rho, rm1

@@ -74,43 +74,34 @@ def _geometry(x, y, z, rm1=None):
 
 
 def _scalars(g, nu):
-    """Sigma = sigma_rr + sigma_tt, E = (sigma_rr - sigma_tt)/r^2, sigma_zz and T = sigma_rz / r of
-    the Hertz field / p0 (a = 1), docs/theory/interior.md (I5)-(I8)."""
+    """Sigma = sigma_rr + sigma_tt, E = (sigma_rr - sigma_tt)/r^2, sigma_tt, sigma_zz and
+    T = sigma_rz / r of the Hertz field / p0 (a = 1), docs/theory/interior.md (I5)-(I8), with E
+    and sigma_tt in the forms (I56), (I58) that hold the factor 1 - 2 nu apart."""
     N, M, W, R = g["N"], g["M"], g["W"], g["R"]
     F = _one_minus_m_atan(M)
     NR = N * R                                     # N^3 / S
     sigma = NR - 2.0 * (1.0 + nu) * N * F
-    e1 = 8.0 * (1.0 - nu) * (2.0 + N) / (3.0 * W * W * (1.0 + N) ** 2)
-    e2 = _e2(g)
-    return dict(F=F, NR=NR, Sigma=sigma, E=e1 + e2, e1=e1, e2=e2, zz=-NR, T=-2.0 * M * R / W)
+    ea = 4.0 * (2.0 + N) / (3.0 * W * W * (1.0 + N) ** 2)
+    eb = -4.0 * N * _m2_over_s(g) / (W * W)
+    G = (1.0 + N + N * N) / (W * (1.0 + N))        # (1 - N^3) / (2 r^2), (I7a)
+    H = _three_f_minus(M)
+    tt = (1.0 - 2.0 * nu) * (N / W + 0.5 * N * F - 2.0 / 3.0 * G) - 0.5 * N * H      # (I58)
+    return dict(F=F, NR=NR, Sigma=sigma, E=(1.0 - 2.0 * nu) * ea + eb, ea=ea, eb=eb, zz=-NR,
+                T=-2.0 * M * R / W, G=G, H=H, tt=tt)
 
 
-def _near_axis(g):
-    """r^2 <= 1/4: (I7b), the form free of the axial cancellation, is used (S >= 3/4 there)."""
-    return g["r2"] <= 0.25
-
-
-def _h(N):
-    return (3.0 * N ** 3 + 6.0 * N ** 2 + 4.0 * N + 2.0) / (1.0 + N)
-
-
-def _e2(g):
-    """B2 / r^2 with B2 = N^3/S - (2/3)(1 - N^3)/r^2, docs/theory/interior.md (I7): on the axis
-    both terms are 1/(1 + z^2) and cancel, so near it (r^2 <= 1/4) the factored form (I7b) is
-    evaluated; elsewhere the direct one (I7a), which also holds on the edge ring (S = 0)."""
-    N, S, W, r2, NR = g["N"], g["S"], g["W"], g["r2"], g["N"] * g["R"]
-    near = _near_axis(g)
-    G = (1.0 + N + N * N) / (W * (1.0 + N))
+def _m2_over_s(g):
+    """M^2 / S (<= 1), 0 on the edge ring (S = 0), where it multiplies N = 0."""
+    M, S = g["M"], g["S"]
     with np.errstate(invalid="ignore", divide="ignore"):
-        P2 = 4.0 * (1.0 + N + N * N) - W * _h(N)
-        factored = 2.0 * P2 / (3.0 * np.where(near, S, 1.0) * W * W * (1.0 + N))
-        direct = (NR - 4.0 / 3.0 * G) / np.where(near, 1.0, r2)
-    return np.where(near, factored, direct)
+        return np.where(S > 0.0, M * (M / np.where(S > 0.0, S, 1.0)), 0.0)
 
 
-def _cartesian(x, y, sigma, E, zz, T):
-    d = 0.5 * E * (x * x - y * y)
-    return {"xx": 0.5 * sigma + d, "yy": 0.5 * sigma - d, "zz": zz, "xy": E * x * y, "xz": x * T, "yz": y * T}
+def _cartesian(x, y, tt, E, zz, T):
+    """(I8) with sigma_rr = sigma_tt + E r^2: sigma_xx = sigma_tt + E x^2, sigma_yy = sigma_tt + E y^2
+    (I58).  Not Sigma/2 +- E (x^2 - y^2)/2: at nu = 1/2 sigma_tt is O((a/R)^2) of Sigma and E r^2
+    in the far field next to the surface (sigma_yy at y = 0 was off by 4e4 of itself at R = 1e6 a)."""
+    return {"xx": tt + E * x * x, "yy": tt + E * y * y, "zz": zz, "xy": E * x * y, "xz": x * T, "yz": y * T}
 
 
 def _coords(x, y, z):
@@ -123,44 +114,40 @@ def _coords(x, y, z):
 def hertz_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     """Hertz (paraboloid) stress tensor below the surface, divided by p0, at coordinates divided by
     the contact radius; docs/theory/interior.md (I5)-(I9) (Huber 1904, Hamilton 1983, Johnson 1985
-    sec. 3.4, in the stable forms).  Finite everywhere in z >= 0; on the edge ring r = 1, z = 0 the
-    exact limits sigma_rr = -sigma_tt = (1 - 2 nu)/3, sigma_zz = sigma_rz = 0.  Closed form:
-    relative error at most 1e-12 of |value| wherever the value is finite."""
+    sec. 3.4, in the stable forms (I56), (I58)).  Finite everywhere in z >= 0; on the edge ring
+    r = 1, z = 0 the exact limits sigma_rr = -sigma_tt = (1 - 2 nu)/3, sigma_zz = sigma_rz = 0.
+    Closed form: relative error at most 1e-12 of |value| wherever the value is finite."""
     x, y, z = _coords(x, y, z)
     nu = np.asarray(nu, dtype=float)
     s = _scalars(_geometry(x, y, z), nu)
-    return _cartesian(x, y, s["Sigma"], s["E"], s["zz"], s["T"])
+    return _cartesian(x, y, s["tt"], s["E"], s["zz"], s["T"])
 
 
 def _derivatives(g, s, nu):
     """Scaling derivatives D f = (r d/dr + z d/dz) f of the scalars of ``_scalars``,
-    docs/theory/interior.md (I11)-(I13).  They carry 1/S: infinite on the edge ring."""
+    docs/theory/interior.md (I11)-(I13), (I56), (I58).  They carry 1/S: infinite on the edge ring."""
     N, M, S, W, Q, R = g["N"], g["M"], g["S"], g["W"], g["Q"], g["R"]
     with np.errstate(invalid="ignore", divide="ignore"):
         dS = (M * M * W - 2.0 * N * N * Q) / S
         dNR = -N * R * (3.0 * Q + dS) / S
         dsigma = dNR - 2.0 * (1.0 + nu) * (N * s["F"] - N / S)
-        de1 = s["e1"] / S * (N * Q * (3.0 + N) / ((2.0 + N) * (1.0 + N)) - 4.0 * M * M)
+        dea = s["ea"] / S * (N * Q * (3.0 + N) / ((2.0 + N) * (1.0 + N)) - 4.0 * M * M)
+        deb = s["eb"] / S * (1.0 + N * N - 2.0 * M * M - dS)            # D ln e_b = (2 - Q - 2M^2 - D S)/S
         dT = s["T"] / S * (2.0 * N * N - 1.0 - M * M - dS)
-    return dict(Sigma=dsigma, E=de1 + _de2(g, dS, dNR), zz=-dNR, T=dT)
+        tt = _tt_minus_dtt(g, s, nu)
+    return dict(Sigma=dsigma, E=(1.0 - 2.0 * nu) * dea + deb, zz=-dNR, T=dT, tt_fp=tt)
 
 
-def _de2(g, dS, dNR):
-    """D(B2 / r^2), docs/theory/interior.md (I13): from (I7b) near the axis, from (I7a) elsewhere."""
-    N, M, S, W, Q, r2 = g["N"], g["M"], g["S"], g["W"], g["Q"], g["r2"]
-    near = _near_axis(g)
-    onepn, n2 = 1.0 + N, N * N
-    with np.errstate(invalid="ignore", divide="ignore"):
-        h = _h(N)
-        dh = (6.0 * N ** 3 + 15.0 * n2 + 12.0 * N + 2.0) / onepn ** 2
-        P2 = 4.0 * (1.0 + N + n2) - W * h
-        dP2 = (-4.0 * (1.0 + 2.0 * N) * N * Q - 2.0 * M * M * W * h + W * dh * N * Q) / S
-        factored = 2.0 / (3.0 * S * W * W * onepn) * (dP2 - P2 * (dS + 4.0 * M * M - N * Q / onepn) / S)
-        G = (1.0 + N + n2) / (W * onepn)
-        dG = -G / S * (n2 * Q * (2.0 + N) / ((1.0 + N + n2) * onepn) + 2.0 * M * M)
-        B2 = N * g["R"] - 4.0 / 3.0 * G
-        direct = (dNR - 4.0 / 3.0 * dG - 2.0 * B2) / np.where(near, 1.0, r2)
-    return np.where(near, factored, direct)
+def _tt_minus_dtt(g, s, nu):
+    """sigma_tt - D sigma_tt of (I58), the punch's hoop stress (times pi), with D of (I11)-(I13):
+    D(N F) = N F - N/S (F cancels), D(N/W) = -(N/W)(Q + 2M^2)/S, G - D G from (I13) and
+    D(N H) = -N Q H/S + N H'(M) M (1 + M^2)/S.  Each part has one sign in the far field."""
+    N, M, S, W, Q, G, H = g["N"], g["M"], g["S"], g["W"], g["Q"], s["G"], s["H"]
+    m2, n2 = M * M, N * N
+    g_dg = G * (1.0 + (n2 * Q * (2.0 + N) / ((1.0 + N + n2) * (1.0 + N)) + 2.0 * m2) / S)
+    a = (N / W) * (1.0 + (Q + 2.0 * m2) / S) + 0.5 * N / S - 2.0 / 3.0 * g_dg
+    nh = N * H * (1.0 + Q / S) - N * _three_f_minus_prime(M) * M * (1.0 + m2) / S
+    return (1.0 - 2.0 * nu) * a - 0.5 * nh
 
 
 def punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
@@ -177,7 +164,7 @@ def punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
     s = _scalars(g, nu)
     d = _derivatives(g, s, nu)
     with np.errstate(invalid="ignore"):
-        k = _cartesian(x, y, s["Sigma"] - d["Sigma"], -(s["E"] + d["E"]), s["zz"] - d["zz"], -d["T"])
+        k = _cartesian(x, y, d["tt_fp"], -(s["E"] + d["E"]), s["zz"] - d["zz"], -d["T"])
     out = {c: v / math.pi for c, v in k.items()}
     _edge_ring(out, x, y, g["S"] == 0.0)
     return out
@@ -211,6 +198,26 @@ def _x_minus_sin(x, sin_x):
     return np.where(small, series * x2 * x, x - sin_x)
 
 
+# T20 - T31 = 2 int_0^phi sin^4 t dt = sum_{k>=2} (-1)^k (4^(2k+1) - 2^(2k+4)) phi^(2k+1) / (16 (2k+1)!)
+# (the k = 0, 1 terms cancel); 24 terms reach 16^25/51! < 1e-35 at phi = 1
+_SIN4 = [(-1.0) ** k * (4.0 ** (2 * k + 1) - 2.0 ** (2 * k + 4)) / (16.0 * math.factorial(2 * k + 1))
+         for k in range(2, 26)]
+
+
+def _t20_minus_t31(phi, t20, t31):
+    """T20 - T31 = 2 int_0^phi sin^4 t dt >= 0, docs/theory/interior.md (I57): the two agree to
+    O(phi^3) ~ (2/3)/M^3 while the difference is (2/5) phi^5 (the far field, phi ~ 1/R), so the
+    series below phi = 1 (at R = 7.9e3 a the difference lost 8 digits: sigma_yy of the sliding
+    field at y = 0 next to the surface off by 3.5e-8 of itself), the difference above (at most a
+    factor 3 lost, at phi = 1)."""
+    small = phi < 1.0
+    p2 = phi * phi
+    series = np.zeros_like(phi)
+    for c in _SIN4[::-1]:
+        series = series * p2 + c
+    return np.where(small, series * p2 * p2 * phi, t20 - t31)
+
+
 # 3 F(M) - 1/(1 + M^2) = sum_k (-1)^(k+1) (2 - 2k)/(2k + 1) t^(2k), t = 1/M (the k = 1 term is 0)
 _H_SERIES = [(-1.0) ** (k + 1) * (2.0 - 2.0 * k) / (2 * k + 1) for k in range(1, 30)]
 
@@ -229,15 +236,36 @@ def _three_f_minus(M):
     return np.where(far, series * t2, direct)
 
 
+def _three_f_minus_prime(M):
+    """H'(M) = 3 F'(M) + 2M/(1 + M^2)^2 of ``_three_f_minus`` (I58): its terms agree to O(1/M^3)
+    and H' ~ -(8/5)/M^5 in the far field, so the derivative of the series for M >= 2; below,
+    F' = -arctan(1/M) + M/(1 + M^2) (M <= 1) or (F (1 + M^2) - 1)/(M (1 + M^2)) (as (I25))."""
+    far = M >= 2.0
+    t = 1.0 / np.where(far, M, 1.0)
+    t2 = t * t
+    series = np.zeros_like(t2)
+    for k, c in list(enumerate(_H_SERIES, start=1))[::-1]:
+        series = series * t2 - 2.0 * k * c
+    opm = 1.0 + M * M
+    F = _one_minus_m_atan(M)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        fp = np.where(M <= 1.0, -(0.5 * math.pi - np.arctan(np.minimum(M, 1.0))) + M / opm,
+                      (F * opm - 1.0) / np.where(M > 1.0, M * opm, 1.0))
+    return np.where(far, series * t2 * t, 3.0 * fp + 2.0 * M / (opm * opm))
+
+
 def _sliding_scalars(g):
     """The radial functions of the sliding field, docs/theory/interior.md (I19)-(I21), with a = 1,
     q0 = 1: D = (1/r) d/dr, Lambda the harmonic potential of (I18) and Phi = Lambda_zz.  Every
     1/S is taken with the factor (M^2, N^2 or M N, each <= S) that makes it bounded; on the edge
     ring (S = 0) those products multiply a vanishing factor and are set to 0 (I22)."""
     M, N, S = g["M"], g["N"], g["S"]
+    # M/S and N/S (<= S^(-1/2)), not 1/S: next to the edge ring at a subnormal depth (z = 5e-324 a)
+    # 1/S overflowed and the bounded products became -inf
     with np.errstate(invalid="ignore", divide="ignore"):
-        inv_s = np.where(S > 0.0, 1.0 / np.where(S > 0.0, S, 1.0), 0.0)
-    m2, mn, n2 = M * M * inv_s, M * N * inv_s, N * N * inv_s
+        safe = np.where(S > 0.0, S, 1.0)
+        m_s, n_s = np.where(S > 0.0, M / safe, 0.0), np.where(S > 0.0, N / safe, 0.0)
+    m2, mn, n2 = M * m_s, M * n_s, N * n_s
     opm = 1.0 + M * M
     opn = 1.0 + N
     phi = np.arctan2(1.0, M)
@@ -250,6 +278,7 @@ def _sliding_scalars(g):
         P=-math.pi * t20,                                               # D Phi = g_zz
         H=_three_f_minus(M),                                            # (Phi_z - z D Phi) = -pi N H
         Dg=g["z"] * dgz + math.pi * t31,
+        J=_t20_minus_t31(phi, t20, t31),                               # (z D g_z - D g - D Phi)/pi (I57)
         D2g=zd2gz - 2.0 * math.pi * M * m2 / opm ** 3,                  # D^2 g = z D^2 g_z - D^2 g_Psi
         Dgz=dgz,
         zD2gz=zd2gz,
@@ -280,12 +309,14 @@ def _sliding_cartesian(x, y, z, nu, s, N=None):
     against z D Phi (exact for a point load) never happens in rounding."""
     x2, y2 = x * x, y * y
     xz0 = s["X"] if "X" in s else -0.5 * N * s["H"]
-    P, Dg, Dgz = s["P"], s["Dg"], s["Dgz"]
+    # D g = z D g_z - P - pi J (I57): D g, -P and z D g_z agree to O(1/R^2) relative in the far
+    # field, so the sums of (I21) that hold them are formed from P, z D g_z and J
+    P, J, zdgz = s["P"], s["J"], z * s["Dgz"]
     k = 1.0 / (4.0 * math.pi)
-    xx = 2.0 * x * (2.0 * P - 3.0 * z * Dgz - x2 * s["zD2gz"] + 2.0 * nu * (3.0 * Dg + x2 * s["D2g"])) \
-        + 4.0 * nu * x * P
-    yy = 2.0 * x * (-z * Dgz - y2 * s["zD2gz"] + 2.0 * nu * (Dg + y2 * s["D2g"])) + 4.0 * nu * x * P
-    xy = y * (2.0 * P - 2.0 * (z * Dgz + x2 * s["zD2gz"]) + 4.0 * nu * (Dg + x2 * s["D2g"]))
+    p2, q2, j2 = (2.0 - 4.0 * nu) * P, (1.0 - 2.0 * nu) * zdgz, 2.0 * math.pi * nu * J
+    xx = 2.0 * x * (p2 - 3.0 * (q2 + j2) - x2 * s["zD2gz"] + 2.0 * nu * x2 * s["D2g"])
+    yy = 2.0 * x * (-(q2 + j2) - y2 * s["zD2gz"] + 2.0 * nu * y2 * s["D2g"])
+    xy = y * (p2 - 2.0 * (q2 + j2) - 2.0 * x2 * s["zD2gz"] + 4.0 * nu * x2 * s["D2g"])
     return {"xx": k * xx, "yy": k * yy, "zz": -2.0 * k * x * s["zgzzz"], "xy": k * xy,
             "xz": xz0 - 2.0 * k * x2 * s["zDgzz"], "yz": -2.0 * k * x * y * s["zDgzz"]}
 
@@ -312,6 +343,7 @@ def _sliding_punch_scalars(g):
         P=-2.0 * math.pi * M * inv_s / opm,                                      # D Phi
         X=-N * inv_s / opm,                                                      # (Phi_z - z D Phi)/(2 pi)
         Dg=z * dgz + 2.0 * math.pi * m3s / (opm * opm),
+        J=2.0 * M * inv_s / (opm * opm),                                       # (z D g_z - D g - D Phi)/pi (I57)
         D2g=zd2gz + 2.0 * math.pi * m3s * ((m2 + 5.0 * n2 + m2 * (n2 - 3.0 * m2)) * inv_s) * inv_s / opm ** 3,
         Dgz=dgz,
         zD2gz=zd2gz,
@@ -398,12 +430,14 @@ def punch_radial(rs, zs, rm1, nu):
     """The flat punch of radius 1 (depth 1, E* = 1) as its four radial functions, times pi:
     Sigma = sigma_rr + sigma_tt, sigma_zz, E = (sigma_rr - sigma_tt)/r^2 and T = sigma_rz/r at
     (r, z) = (rs, zs), z > 0, with ``rm1`` = r - 1 without rounding; docs/theory/interior.md
-    (I53): (I10)-(I13) with the F(M) terms cancelled analytically (no arctan) and each
-    subexpression formed once, in place where it can be (a fresh temporary per operation cost 3x
-    the time: the allocator returns and re-faults the pages).  The Cartesian components are (I8)
-    of these; they equal those of ``punch_unit`` to 4e-15 of the largest component (2e5 points,
-    r in [0, 1e4], r - 1 down to +-1e-12, z in [1e-12, 1e4]; both against extended precision),
-    which is the accuracy the superposition needs.  Finite for z > 0."""
+    (I53): (I10)-(I13) with the F(M) terms cancelled analytically (no arctan), E + D E as the two
+    terms of one sign of (I56) (no switch at the axis) and each subexpression formed once, in
+    place where it can be (a fresh temporary per operation cost 3x the time: the allocator
+    returns and re-faults the pages).  The Cartesian components are (I8) of these; they equal
+    those of ``punch_unit`` to 4e-15 of the largest component (2e5 points, r in [0, 1e4], r - 1
+    down to +-1e-12, z in [1e-12, 1e4]; both against extended precision),
+    and the decimal reference of (I10) within 1e-12 of |value| out to R = 1e8 (every polar angle,
+    nu = 0.3), which is the accuracy the superposition needs.  Finite for z > 0."""
     r2 = rs * rs
     z2 = zs * zs
     S, M, N = mns(rm1, zs, z2)
@@ -441,10 +475,12 @@ def punch_radial(rs, zs, rm1, nu):
     t_p *= inv_s
     t_p *= 2.0
     t_p /= W                                           # with T = -2 M N^2 / (S W) (I8)
-    e1 = W * onepn                                     # e1 + D e1 (I12)
+    # E + D E by (I56): (1 - 2 nu)(e_a + D e_a) + e_b + D e_b, each part of one sign where the sum
+    # of (I7) cancelled (next to the axis, in the far field, next to the surface at nu = 1/2)
+    e1 = W * onepn                                     # e_a + D e_a (I12)
     e1 *= e1
     np.divide(twopn, e1, out=e1)
-    e1 *= 8.0 * (1.0 - nu) / 3.0
+    e1 *= 4.0 * (1.0 - 2.0 * nu) / 3.0
     f = N + 3.0
     f *= N
     f *= Q
@@ -455,40 +491,18 @@ def punch_radial(rs, zs, rm1, nu):
     f *= inv_s
     f += 1.0
     e1 *= f
-    # e2 + D e2 by (I7a), (I13): ((4/3)(G - D G) - (NR - D(NR))) / r^2 with G = (1 + N + N^2)/(W(1 + N)),
-    # G - D G = G (1 + [N^2 Q (2 + N)/((1 + N + N^2)(1 + N)) + 2 M^2]/S); near the axis by (I7b)
-    ppn = n2 + N
-    ppn += 1.0
-    e2 = n2 * Q
-    e2 *= twopn
-    e2 /= ppn
-    e2 /= onepn
-    e2 += 2.0 * m2
+    e2 = n2 + 1.0                                      # e_b + D e_b = e_b (1 + (1 + N^2 - 2M^2 - D S)/S)
+    e2 -= 2.0 * m2
+    e2 -= dS
     e2 *= inv_s
     e2 += 1.0
-    e2 *= ppn
+    e2 *= N
+    e2 *= m2
+    e2 *= inv_s
     e2 /= W
-    e2 /= onepn
-    e2 *= 4.0 / 3.0
-    e2 -= nr_1
-    with np.errstate(divide="ignore", invalid="ignore"):
-        e2 /= r2                                       # inf on the axis: replaced below
-    near = np.flatnonzero(r2 <= 0.25)
-    if near.size:       # reshape(-1): a view; ndarray.flat[...] costs 100 ns per element
-        e2.reshape(-1)[near] = _e2_near(*(v.reshape(-1)[near] for v in (N, m2, n2, inv_s, W, Q, dS)))
+    e2 /= W
+    e2 *= -4.0
     e1 += e2
     e1 *= -1.0
     nr_1 *= -1.0
     return sigma, nr_1, e1, t_p
-
-
-def _e2_near(N, m2, n2, inv_s, W, Q, dS):
-    """e2 + D e2 by the factored forms (I7b), (I13) (r^2 <= 1/4, S >= 3/4)."""
-    onepn = 1.0 + N
-    h = (3.0 * N * n2 + 6.0 * n2 + 4.0 * N + 2.0) / onepn
-    dh = (6.0 * N * n2 + 15.0 * n2 + 12.0 * N + 2.0) / (onepn * onepn)
-    P2 = 4.0 * (1.0 + N + n2) - W * h
-    nq = N * Q
-    dP2 = (-4.0 * (1.0 + 2.0 * N) * nq - 2.0 * m2 * W * h + W * dh * nq) * inv_s
-    k = 2.0 * inv_s / (3.0 * W * W * onepn)
-    return k * (P2 * (1.0 - (dS + 4.0 * m2 - nq / onepn) * inv_s) + dP2)

@@ -119,7 +119,8 @@ _SLIDING_KERNEL = (_integrate_sliding, COMPONENTS)
 def _flat_sliding(f: _Flat, profile):
     """(I33) on the flat rule of ``interior._superpose_flat`` (I54): the radial functions of the
     sliding punch (I30)-(I31) summed per point with the powers of 1/rho their monomials in x, y
-    carry in (I21), and (I21) formed once per point (I55); None where a node is on a punch's
+    carry in (I21), and (I21) formed once per point (I55), with a1, a2, a3 in the far-field forms
+    of (I57); None where a node is on a punch's
     edge ring (z/rho underflowed)."""
     inv = 1.0 / f.rho
     zs = f.z[f.row] * inv
@@ -129,16 +130,18 @@ def _flat_sliding(f: _Flat, profile):
         return None
     v = _sliding_punch_scalars(dict(M=M, N=N, S=S, z=zs))
     nu = f.node_nu()
-    P, Dg, zdgz = v["P"], v["Dg"], zs * v["Dgz"]
+    # D g = z D g_z - P - pi J (I57): formed from P, z D g_z and J, which do not cancel in the far field
+    P, zdgz = v["P"], zs * v["Dgz"]
+    q2, j2 = (1.0 - 2.0 * nu) * zdgz, 2.0 * math.pi * nu * v["J"]
     b = 4.0 * nu * v["D2g"] - 2.0 * v["zD2gz"]
     # x^p y^q / rho^(p+q) = ux^p uy^q (r/rho)^(p+q): bounded (rho > 1e-150 r), no 1/rho^4 overflow
     rs = f.r[f.row] * inv
     w = f.w * inv                                  # K_T = unit(x / rho) / rho
     x0 = f.sum(v["X"] * w)
     w *= rs
-    a1 = f.sum((4.0 * (1.0 + nu) * P - 6.0 * zdgz + 12.0 * nu * Dg) * w)
-    a2 = f.sum((4.0 * nu * (P + Dg) - 2.0 * zdgz) * w)
-    a3 = f.sum((2.0 * P - 2.0 * zdgz + 4.0 * nu * Dg) * w)
+    a1 = f.sum((4.0 * (1.0 - 2.0 * nu) * P - 6.0 * (q2 + j2)) * w)
+    a2 = f.sum(-2.0 * (q2 + j2) * w)
+    a3 = f.sum((2.0 * (1.0 - 2.0 * nu) * P - 2.0 * (q2 + j2)) * w)
     cz = f.sum(v["zgzzz"] * w)
     w *= rs
     d = f.sum(v["zDgzz"] * w)
