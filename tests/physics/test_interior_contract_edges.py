@@ -223,3 +223,17 @@ def test_subnormal_depths_through_fields(prof, z):
     for k in ("u_x", "u_y", "u_z"):
         assert np.all(np.isfinite(out[k]))
         np.testing.assert_allclose(out[k], surface[k], rtol=0.0, atol=1e-10)
+
+
+def test_unresolved_points_below_the_surface_are_nan_never_infinite():
+    """The flat punch's edge ring at a subnormal depth: the routes do not resolve it (flag 3), and
+    the values there are NaN, not the +-inf the contract keeps for unbounded exact limits."""
+    from stressfields.physics import axisymmetric as ax
+
+    names = ["sigma_xx", "sigma_zz", "sigma_xz", "dpdz", "validity"]
+    out, _ = ax.fields(names, ax.flat_punch(1.0), np.array([1.0, 0.5]), 0.0, np.array([5e-324, 5e-324]),
+                       a=1.0, nu=0.3, mu=0.3, ux0=0.1)
+    flagged = out["validity"] == 3
+    for n in names[:-1]:
+        assert not np.any(np.isinf(out[n])), n
+        assert np.all(np.isfinite(out[n][~flagged])), n

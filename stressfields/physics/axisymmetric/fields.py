@@ -185,7 +185,7 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
         full = np.empty(shape)
         if n in out:
             full[~deep] = np.broadcast_to(out[n], shape)[~deep]
-        full[deep] = below[n]
+        full[deep] = _unresolved_nan(below[n])
         out[n] = full
     if "validity" in names:
         flag = validity_flag(*(out[n] for n in valued))
@@ -194,6 +194,13 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
         unresolved = deep & np.any([~np.isfinite(out[n]) for n in valued], axis=0) if valued else deep & False
         out["validity"] = np.where(unresolved, np.int8(UNRESOLVED), flag).astype(np.int8)
     return out, route
+
+
+def _unresolved_nan(values: np.ndarray) -> np.ndarray:
+    """Values below the surface: every exact one is finite, so a non-finite one is a point the routes
+    do not resolve (validity UNRESOLVED), NaN, never an infinity that the contract reserves for
+    unbounded exact limits (docs/theory/interior.md section 6)."""
+    return np.where(np.isfinite(values), values, np.nan)
 
 
 def _add(normal: dict, on: np.ndarray, keys, tangential: Callable[[], dict]) -> dict:
@@ -340,7 +347,7 @@ def _history_with_depth(names, profile, x, y, z, *, a, nu, mu, amplitude, histor
         values = np.empty(shape)
         if n in out:
             values[~deep] = np.broadcast_to(out[n], shape)[~deep]
-        values[deep] = below[n]
+        values[deep] = _unresolved_nan(below[n])
         out[n] = values
     if "validity" in names:
         flag = validity_flag(*(out[n] for n in valued))
