@@ -415,9 +415,14 @@ def _hertz_mindlin_512(repeats: int) -> dict:
     return out
 
 
+#: sample counts of the graded tabulated profile timed (its pressure costs ~samples^2 per point)
+GRADED_SAMPLES = (25, 200)
+
+
 def _tabulated_rates(repeats: int) -> dict:
-    """Points per CPU second of the tabulated routes at rtol 1e-10 for a 1000-sample profile: the
-    axisymmetric surface stresses (partial slip) and the graded pressure and surface displacement."""
+    """Points per CPU second of the tabulated routes at rtol 1e-10: the axisymmetric surface stresses
+    (partial slip) for a 1000-sample profile, the graded pressure and surface displacement for
+    GRADED_SAMPLES samples."""
     from stressfields.physics import axisymmetric as ax
     from stressfields.physics.graded import normal as N
     from stressfields.physics.graded import profiles as P
@@ -430,13 +435,15 @@ def _tabulated_rates(repeats: int) -> dict:
                        repeats)
     out = {"tabulated_axisymmetric_points_per_cpu_s": x.size / cpu}
     a = 1e-3
-    prof = P.Tabulated(rs * a, (np.sqrt(rs ** 2 + 0.04) - 0.2) * a)
     kw = dict(k=0.5, nu=0.3, E0=1e9, c0=1e-3)
-    r = np.linspace(0.0, 2.0, 200) * a
-    _, cpu = _wall_cpu(lambda: N.pressure_quad(r[r < a], a, prof, rtol=1e-10, **kw), max(1, repeats // 3))
-    out["tabulated_graded_pressure_points_per_cpu_s"] = float(np.sum(r < a)) / cpu
-    _, cpu = _wall_cpu(lambda: N.surface_displacement_quad(r, a, prof, k=0.5, rtol=1e-10), max(1, repeats // 3))
-    out["tabulated_graded_uz_points_per_cpu_s"] = r.size / cpu
+    for samples in GRADED_SAMPLES:
+        rs = np.linspace(0.0, 1.2, samples)
+        prof = P.Tabulated(rs * a, (np.sqrt(rs ** 2 + 0.04) - 0.2) * a)
+        inside, outside = np.linspace(0.05, 0.95, 5) * a, np.linspace(1.05, 2.0, 50) * a
+        _, cpu = _wall_cpu(lambda: N.pressure_quad(inside, a, prof, rtol=1e-10, **kw), 1)
+        out[f"tabulated_graded_pressure_{samples}_points_per_cpu_s"] = inside.size / cpu
+        _, cpu = _wall_cpu(lambda: N.surface_displacement_quad(outside, a, prof, k=0.5, rtol=1e-10), 1)
+        out[f"tabulated_graded_uz_{samples}_points_per_cpu_s"] = outside.size / cpu
     return out
 
 
@@ -645,9 +652,9 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
               f"the closed-form route, {tp['hertz_mindlin_512_quadrature_s']:.2f} s forced onto the integral "
               f"route (the principal stresses alone: {tp['principal_stresses_512_s']:.2f} s)."]
     lines += [f"- Tabulated profiles (1000 samples) at rtol 1e-10: axisymmetric surface stresses "
-              f"{tp['tabulated_axisymmetric_points_per_cpu_s']:.3g} points per CPU second; graded pressure "
-              f"{tp['tabulated_graded_pressure_points_per_cpu_s']:.3g}, graded u_z "
-              f"{tp['tabulated_graded_uz_points_per_cpu_s']:.3g}."]
+              f"{tp['tabulated_axisymmetric_points_per_cpu_s']:.3g} points per CPU second; graded (k = 0.5) "
+              + ", ".join(f"{n} samples: pressure {tp[f'tabulated_graded_pressure_{n}_points_per_cpu_s']:.3g}, u_z "
+                          f"{tp[f'tabulated_graded_uz_{n}_points_per_cpu_s']:.3g}" for n in GRADED_SAMPLES) + "."]
     lines += _process_lines(tp)
     if "peer_512_s" in tp:
         peer = tp["peer_512_s"]

@@ -64,3 +64,12 @@ def test_peer_solves_both_problems_and_converges_to_our_closed_forms():
             ok = np.isfinite(exact)
             errors.append(np.linalg.norm((p - exact)[ok]) / np.linalg.norm(exact[ok]))
         assert errors[1] < 0.6 * errors[0] and errors[1] < 0.005, (problem, errors)
+
+
+def test_the_bench_command_loads_the_harness():
+    """`stressfields bench` loads benchmarks/harness.py by path: its dataclasses need the module
+    registered while it loads."""
+    from stressfields.cli import bench_harness
+
+    harness = bench_harness()
+    assert harness.QUICK.points < harness.FULL.points and callable(harness.run)
