@@ -583,7 +583,8 @@ def _chart(ds: xr.Dataset, path: Path) -> None:
     import matplotlib.pyplot as plt
     from matplotlib.lines import Line2D
 
-    fig, axp = plt.subplots(figsize=(11, 6.5))
+    # tall enough for both legends beside the axes (one line per method and per case)
+    fig, axp = plt.subplots(figsize=(12, max(6.5, 0.19 * (ds.sizes["method"] + ds.sizes["case"]) + 1.5)))
     markers = "osD^v<>phH*Xd8P1234"
     floor = 1e-16                          # exact to rounding: drawn at 1e-16
     for j, m in enumerate(ds.method.values):
