@@ -157,13 +157,18 @@ def test_nonfinite_modes(tmp_path, mode):
 
 
 def test_reopened_chunks_follow_dask_and_stay_below_64_mb(tmp_path):
+    """Compressed variables (and uncompressed ones above 256 MB) are stored in HDF5 chunks that
+    follow the dask chunks; smaller uncompressed ones contiguous, one chunk when reopened."""
     ds = sf.generate({**CONE, "output": {"variables": ["sigma_xx"], "chunks": {"mu": 1, "x": 16}}})
-    path = sf.write(ds, tmp_path / "c.nc")
+    path = sf.write(ds, tmp_path / "c.nc", compression=1)
     with xr.open_dataset(path, chunks={}) as got:
         assert got.sigma_xx.chunks == ((1, 1), (16, 16, 16, 13))
+    plain = sf.write(ds, tmp_path / "p.nc")
+    with xr.open_dataset(plain, chunks={}) as got:
+        assert got.sigma_xx.chunks == ((2,), (61,)) and got.sigma_xx.encoding["contiguous"]
     # the HDF5 chunk of a large dask chunk is capped: leading dimensions shrink, a line along x stays whole
     big = xr.DataArray(np.broadcast_to(np.float64(0), (4000, 5000))).chunk({"dim_0": 4000}).variable
-    chunks = _layout(big, 0)["chunksizes"]
+    chunks = _layout(big, 1)["chunksizes"]
     assert np.prod(chunks) * 8 <= 64 * 2 ** 20 and chunks[1] == 5000
 
 
