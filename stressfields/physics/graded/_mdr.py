@@ -100,6 +100,7 @@ def pressure_integral(r, a, dg, params, rtol, breaks=(), lam=1.0):
     if not m.any():
         return out
     P = _prepare({"r": r, "a": a, "lam": lam, **params}, m)
+    breaks = _select(breaks, m)
     total = np.zeros(P["k"].shape[0])
     split = np.zeros(total.shape, bool)
     centre = (P["r"][:, 0] == 0.0) & (P["k"][:, 0] > 0.0)
@@ -113,10 +114,18 @@ def pressure_integral(r, a, dg, params, rtol, breaks=(), lam=1.0):
     for sel, fn in ((split, _centre_part), (~split, _general_part)):
         if sel.any():
             sub = {key: v[sel] for key, v in P.items()}
-            total[sel] = fn(sub, dg, g0[sel] if fn is _centre_part else None, breaks, rtol)
+            total[sel] = fn(sub, dg, g0[sel] if fn is _centre_part else None, _select(breaks, sel), rtol)
     lam_k = np.broadcast_to(np.asarray(lam, float), shape)[m] ** np.broadcast_to(params["k"], shape)[m]
     out[m] = lam_k * total / np.pi
     return out
+
+
+def _select(breaks, mask):
+    """Breaks for the points of ``mask``: per-point breaks (shape (rows, points, 1), one row per
+    rank) are selected along their point axis; a common list of breaks is kept as it is."""
+    if np.ndim(breaks) != 3:
+        return breaks
+    return np.asarray(breaks)[:, np.ravel(mask)]
 
 
 def _general_part(P, dg, _, breaks, rtol):

@@ -106,7 +106,8 @@ class Tabulated:
     Because the spline is piecewise cubic, the transform (5) is done exactly, piece by piece, with
     regularised incomplete beta functions (:meth:`g`, :meth:`dg`; docs/theory/graded.md (G14)); the
     outer MDR integrals are split at the knots (``breaks``), where the integrands are not smooth.
-    Cost grows as (number of knots)^2.
+    Each g' costs O(knots): the panel rules (:meth:`dg_panels`) form it once per (a, k) on a fixed
+    number of nodes per panel, shared by every point ((number of knots)^2 work per (a, k)).
     """
 
     def __init__(self, r, f, slope_at_0=None):
@@ -157,19 +158,10 @@ class Tabulated:
         key = (float(a), float(k), int(order))
         cache = self.__dict__.setdefault("_panel_cache", {})
         if key not in cache:
-            # a knot within 1e-12 a of a (a chosen on a knot, rounded) would leave the edge
-            # singularity on an ungraded panel: it joins the last panel
-            knots = np.concatenate([[0.0], self.breaks[self.breaks < a * (1.0 - 1e-12)], [float(a)]])
-            # the last panel is cut geometrically towards a (widths L 0.3^j, down to 1e-20 L): the
-            # kernel of (G49) is singular at t = r, just beyond a as r -> a+; on each cut the
-            # singularity is about as far away as the cut is wide, so each converges geometrically
-            # (one smoothed panel needed 128 nodes for 1e-10 at r = a (1 + 1e-9), measured)
-            last = knots[-1] - knots[-2]
-            cuts = knots[-1] - last * _EDGE_GRADING ** np.arange(0, 39)
             w, W = quadrature.gauss_legendre(int(order))
             smooth = w * w * (3.0 - 2.0 * w), 6.0 * w * (1.0 - w) * W
             x, wx = [], []
-            for edges, (u, du) in ((knots[:-1], smooth), (np.append(cuts, knots[-1]), (w, W))):
+            for edges, (u, du) in zip(self._panel_edges(a), (smooth, (w, W))):
                 L = np.diff(edges)[:, None]
                 x.append((edges[:-1, None] + L * u).ravel())
                 wx.append((L * du).ravel())
@@ -179,6 +171,36 @@ class Tabulated:
             dg = np.concatenate([self.dg(x[i:i + 256], float(k)) for i in range(0, x.size, 256)])
             cache[key] = (x, wx, dg)
         return cache[key]
+
+    def _panel_edges(self, a):
+        """Edges of the smoothed knot panels below the last knot, and of the cuts of the last panel."""
+        # a knot within 1e-12 a of a (a chosen on a knot, rounded) would leave the edge
+        # singularity on an ungraded panel: it joins the last panel
+        knots = np.concatenate([[0.0], self.breaks[self.breaks < a * (1.0 - 1e-12)], [float(a)]])
+        # the last panel is cut geometrically towards a (widths L 0.3^j, down to 1e-20 L): the
+        # kernel of (G49) is singular at t = r, just beyond a as r -> a+; on each cut the
+        # singularity is about as far away as the cut is wide, so each converges geometrically
+        # (one smoothed panel needed 128 nodes for 1e-10 at r = a (1 + 1e-9), measured)
+        last = knots[-1] - knots[-2]
+        cuts = knots[-1] - last * _EDGE_GRADING ** np.arange(0, 39)
+        return knots[:-1], np.append(cuts, knots[-1])
+
+    def dg_interpolant(self, a, k, order):
+        """g' on [0, a] from its values on the panel nodes of :meth:`dg_panels` (no new evaluation).
+
+        On each panel g' is the degree ``order - 1`` polynomial through the ``order`` node values in
+        the panel variable w (the smoothing map x = r_i + L (3 w^2 - 2 w^3) turns the knot terms
+        (x - r_i)^((3+k)/2) of (G14) into w^(3+k)), evaluated in barycentric form,
+        docs/theory/graded.md (G51).  Returns a function of x (any shape).
+        """
+        x_nodes, _, dg = self.dg_panels(a, k, order)
+        w, W = quadrature.gauss_legendre(int(order))
+        # barycentric weights of the Gauss-Legendre nodes: (-1)^j sqrt((1 - xi_j^2) W_j)
+        lam = (-1.0) ** np.arange(w.size) * np.sqrt(w * (1.0 - w) * W)
+        edges = self._panel_edges(a)
+        ns = edges[0].size - 1
+        vals = dg.reshape(-1, w.size)
+        return lambda x: _barycentric(np.asarray(x, float), edges, ns, vals, w, lam)
 
     def _beta_sum(self, x, k, weights):
         # sum over pieces and m of w_m b_m x^(m+1) B((m+1)/2, (1+k)/2)/2 [I(hi^2/x^2) - I(lo^2/x^2)]
@@ -220,6 +242,39 @@ class Tabulated:
 
 #: ratio of successive cuts of the last panel towards the contact edge (Tabulated.dg_panels)
 _EDGE_GRADING = 0.3
+
+
+def _unsmooth(s):
+    """w in [0, 1] with 3 w^2 - 2 w^3 = s, as sin^2(e/2) + (sqrt 3/2) sin e, e = (2/3) asin(sqrt s):
+    the trigonometric root 1/2 - sin(asin(1 - 2s)/3) written without its cancellation at s -> 0."""
+    e = (2.0 / 3.0) * np.arcsin(np.sqrt(np.clip(s, 0.0, 1.0)))
+    return np.sin(0.5 * e) ** 2 + 0.5 * np.sqrt(3.0) * np.sin(e)
+
+
+def _barycentric(x, edges, ns, vals, w, lam):
+    """Panel-wise barycentric interpolation of the node values ``vals`` at x (see dg_interpolant)."""
+    smooth_edges, cut_edges = edges
+    flat = x.ravel()
+    out = np.empty(flat.shape)
+    for s in range(0, flat.size, 4096):          # bounds the (points x order) work arrays
+        xb = flat[s:s + 4096]
+        smooth = xb < smooth_edges[-1]
+        i = np.clip(np.searchsorted(smooth_edges, xb, side="right") - 1, 0, max(ns - 1, 0))
+        j = np.clip(np.searchsorted(cut_edges, xb, side="right") - 1, 0, cut_edges.size - 2)
+        lo = np.where(smooth, smooth_edges[i], cut_edges[j])
+        hi = np.where(smooth, smooth_edges[np.minimum(i + 1, ns)], cut_edges[j + 1])
+        # the finest cuts of the last panel round to zero width (a - 1e-20 L = a): any u there
+        width = hi - lo
+        u = np.clip((xb - lo) / np.where(width > 0.0, width, 1.0), 0.0, 1.0)
+        u = np.where(smooth, _unsmooth(u), u)
+        v = vals[np.where(smooth, i, ns + j)]
+        d = u[:, None] - w[None, :]
+        hit = d == 0.0
+        q = lam / np.where(hit, 1.0, d)
+        bary = np.sum(q * v, axis=1) / np.sum(q, axis=1)
+        exact = np.sum(np.where(hit, v, 0.0), axis=1)
+        out[s:s + 4096] = np.where(hit.any(axis=1), exact, bary)
+    return out.reshape(x.shape)
 
 
 def _transform(x, profile, k, rtol, derivative):
