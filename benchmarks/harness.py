@@ -415,8 +415,8 @@ def _hertz_mindlin_512(repeats: int) -> dict:
     return out
 
 
-#: sample counts of the graded tabulated profile timed (its pressure costs ~samples^2 per point)
-GRADED_SAMPLES = (25, 200)
+#: sample counts of the graded tabulated profile timed (its g' table costs ~samples^2 per (a, k))
+GRADED_SAMPLES = (25, 200, 1000)
 
 
 def _tabulated_rates(repeats: int) -> dict:
