@@ -296,6 +296,22 @@ def bench_harness():
     return module
 
 
+def _keep_freed_memory() -> None:
+    """Keep the large temporaries of the kernels in the process heap instead of mapping and
+    unmapping them for every block (glibc; elsewhere nothing changes). Measured, a 1e8-point run of
+    eleven fields in parts: 61.8 s instead of 77.0 s wall, 32 s instead of 51 s of system time, peak
+    memory 1.25 GB instead of 0.68 GB."""
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL("libc.so.6")
+        m_trim_threshold, m_mmap_threshold = -1, -3
+        libc.mallopt(m_mmap_threshold, 1 << 30)
+        libc.mallopt(m_trim_threshold, (1 << 31) - 1)
+    except (OSError, AttributeError):
+        pass
+
+
 def _run(args) -> int:
     from .build import build, check_chunks, default_chunks, estimate
     from .recipe import load
@@ -333,6 +349,7 @@ def _run(args) -> int:
                   f"chunks {e['chunks']}; estimated {e['seconds']:,.1f} s here (from {e['sample_points']:,} "
                   "points)")
         return 0
+    _keep_freed_memory()
     scheduler, client = _scheduler(args.scheduler)
     try:
         if not args.output:
