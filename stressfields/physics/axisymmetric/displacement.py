@@ -28,7 +28,7 @@ import math
 import numpy as np
 
 from ..quadrature import gauss_jacobi, gauss_legendre, group_by
-from .interior import _live, _Nodes, _superpose, flat_arguments, interior_orders
+from .interior import _live, _Nodes, _superpose, check_arguments, flat_arguments, interior_orders
 from .interior_hertz import _geometry, _one_minus_m_atan, _sliding_scalars, _x_minus_sin
 from .profiles import Profile
 
@@ -334,20 +334,7 @@ def has_displacement_closed_form(profile: Profile) -> bool:
 def _validate(z, a, c, nu, muk, profile, rtol):
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
-    if np.any(~(z >= 0.0)):
-        raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
-    if np.any(~(a > 0.0)) or not np.all(np.isfinite(a)):
-        raise ValueError("a (contact radius) must be positive and finite (a > 0)")
-    if np.any(~((c >= 0.0) & (c <= a))):
-        raise ValueError("c (stick radius) must be in [0, a]")
-    if np.any(~((nu >= 0.0) & (nu <= 0.5))):
-        raise ValueError("nu (Poisson's ratio) must be in [0, 0.5]")
-    if np.any(~(muk >= 0.0)) or not np.all(np.isfinite(muk)):
-        raise ValueError("mu_kernel (coefficient of friction of the kernels) must be finite and >= 0")
-    if profile.kind == "flat_punch" and not np.allclose(a, profile.radius, rtol=1e-12, atol=0.0):
-        raise ValueError(f"flat punch: the contact radius a must equal the punch radius {profile.radius!r}")
-    if np.any(a > profile.max_radius * (1.0 + 1e-12)):
-        raise ValueError(f"a (contact radius) exceeds the end of the tabulated profile, r = {profile.max_radius!r}")
+    check_arguments(z, a, nu, profile, c=c, mu=muk, mu_name="mu_kernel (coefficient of friction of the kernels)")
 
 
 def _family(profile, method):

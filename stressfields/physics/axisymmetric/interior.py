@@ -100,7 +100,7 @@ def interior_stress(x, y, z, a, nu, profile: Profile, *, method: str = "auto",
     (direction-dependent sign); on the surface z = 0 the values and flags of the surface kernels
     (e.g. -inf at a conical tip)."""
     shape, (x, y, z, a, nu) = flat_arguments("interior", method, x, y, z, a, nu)
-    _validate(z, a, nu, profile)
+    check_arguments(z, a, nu, profile)
     family = _closed_family(profile, method)
     if family == "paraboloid":
         p0 = 2.0 * a / (math.pi * profile.closed[1])
@@ -129,13 +129,19 @@ def _cone(x, y, z, a, nu, profile):
     return out
 
 
-def _validate(z, a, nu, profile):
+def check_arguments(z, a, nu, profile, c=None, mu=None, mu_name="mu (coefficient of friction)"):
+    """The interior entry points' argument check (flat arrays): ValueError naming the first bad one.
+    ``c`` (stick radius) and ``mu`` are checked when given; ``mu_name`` is how messages call ``mu``."""
     if np.any(~(z >= 0.0)):
         raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
     if np.any(~(a > 0.0)) or not np.all(np.isfinite(a)):
         raise ValueError("a (contact radius) must be positive and finite (a > 0)")
+    if c is not None and np.any(~((c >= 0.0) & (c <= a))):
+        raise ValueError("c (stick radius) must be in [0, a]")
     if np.any(~((nu >= 0.0) & (nu <= 0.5))):
         raise ValueError("nu (Poisson's ratio) must be in [0, 0.5]")
+    if mu is not None and (np.any(~(mu >= 0.0)) or not np.all(np.isfinite(mu))):
+        raise ValueError(f"{mu_name} must be finite and >= 0")
     if profile.kind == "flat_punch" and not np.allclose(a, profile.radius, rtol=1e-12, atol=0.0):
         raise ValueError(f"flat punch: the contact radius a must equal the punch radius {profile.radius!r}")
     if np.any(a > profile.max_radius * (1.0 + 1e-12)):
@@ -558,7 +564,7 @@ def interior_dpdz(x, y, z, a, nu, profile: Profile, *, method: str = "auto", rto
     (docs/theory/axisymmetric.md (A24)-(A27)), the limit z -> 0+, with its +-inf at the contact
     edge and at a conical tip."""
     shape, (x, y, z, a, nu) = flat_arguments("interior", method, x, y, z, a, nu)
-    _validate(z, a, nu, profile)
+    check_arguments(z, a, nu, profile)
     family = _closed_family(profile, method)
     out = np.empty(x.size)
     surf = z == 0.0

@@ -34,7 +34,8 @@ import math
 
 import numpy as np
 
-from .interior import _direction, _Flat, _live, _Nodes, _superpose, _superpose_flat, dpdz_integrator, flat_arguments
+from .interior import (_direction, _Flat, _live, _Nodes, _superpose, _superpose_flat, check_arguments,
+                       dpdz_integrator, flat_arguments)
 from .interior_hertz import COMPONENTS, _geometry, _sliding_punch_scalars, mns, sliding_punch_unit, sliding_unit
 from .profiles import Profile
 from .surface import surface_dpdz, surface_stress
@@ -65,7 +66,7 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
     shape, (x, y, z, a, c, nu, mu) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
-    _validate(z, a, c, nu, mu, profile)
+    check_arguments(z, a, nu, profile, c=c, mu=mu)
     family = _family(profile, method)
     if family == "paraboloid":
         out = _paraboloid(x, y, z, a, c, nu, mu, float(profile.closed[1]))
@@ -192,23 +193,6 @@ def _surface_part(x, y, a, c, nu, mu, profile, rtol):
     return out
 
 
-def _validate(z, a, c, nu, mu, profile):
-    if np.any(~(z >= 0.0)):
-        raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
-    if np.any(~(a > 0.0)) or not np.all(np.isfinite(a)):
-        raise ValueError("a (contact radius) must be positive and finite (a > 0)")
-    if np.any(~((c >= 0.0) & (c <= a))):
-        raise ValueError("c (stick radius) must be in [0, a]")
-    if np.any(~((nu >= 0.0) & (nu <= 0.5))):
-        raise ValueError("nu (Poisson's ratio) must be in [0, 0.5]")
-    if np.any(~(mu >= 0.0)) or not np.all(np.isfinite(mu)):
-        raise ValueError("mu (coefficient of friction) must be finite and >= 0")
-    if profile.kind == "flat_punch" and not np.allclose(a, profile.radius, rtol=1e-12, atol=0.0):
-        raise ValueError(f"flat punch: the contact radius a must equal the punch radius {profile.radius!r}")
-    if np.any(a > profile.max_radius * (1.0 + 1e-12)):
-        raise ValueError(f"a (contact radius) exceeds the end of the tabulated profile, r = {profile.max_radius!r}")
-
-
 # -- the depth derivative of the hydrostatic pressure (I34)-(I35) -------------------------------
 
 def sliding_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
@@ -252,7 +236,7 @@ def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method:
     shape, (x, y, z, a, c, nu, mu) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
-    _validate(z, a, c, nu, mu, profile)
+    check_arguments(z, a, nu, profile, c=c, mu=mu)
     family = _family(profile, method)
     out = np.zeros(x.size)
     act = (mu > 0.0) & (c < a)
