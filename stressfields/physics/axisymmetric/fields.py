@@ -181,26 +181,25 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
                                        lambda: {"dpdz": interior_dpdz_tangential(*(v[on] for v in T), profile,
                                                                                  **kw)})["dpdz"],
                      region=lambda: None)
+    return _merge_depth(out, below, names, valued, deep, shape), route
+
+
+def _merge_depth(out: dict, below: dict, names, valued, deep: np.ndarray, shape) -> dict:
+    """The surface values ``out`` where z = 0 and the interior ones ``below`` where z > 0, with one
+    validity flag. Below the surface every exact value is finite, so a non-finite one there is a
+    point the routes do not resolve (r or z below ~1e-100 a, docs/theory/interior.md section 6):
+    NaN, flagged UNRESOLVED, never an infinity (which the contract keeps for unbounded limits)."""
     for n in valued:
         full = np.empty(shape)
         if n in out:
             full[~deep] = np.broadcast_to(out[n], shape)[~deep]
-        full[deep] = _unresolved_nan(below[n])
+        full[deep] = np.where(np.isfinite(below[n]), below[n], np.nan)
         out[n] = full
     if "validity" in names:
         flag = validity_flag(*(out[n] for n in valued))
-        # below the surface every exact value is finite: a non-finite one there is a point the 1-D
-        # routes do not resolve (r or z below ~1e-100 a, docs/theory/interior.md section 6), said so
         unresolved = deep & np.any([~np.isfinite(out[n]) for n in valued], axis=0) if valued else deep & False
         out["validity"] = np.where(unresolved, np.int8(UNRESOLVED), flag).astype(np.int8)
-    return out, route
-
-
-def _unresolved_nan(values: np.ndarray) -> np.ndarray:
-    """Values below the surface: every exact one is finite, so a non-finite one is a point the routes
-    do not resolve (validity UNRESOLVED), NaN, never an infinity that the contract reserves for
-    unbounded exact limits (docs/theory/interior.md section 6)."""
-    return np.where(np.isfinite(values), values, np.nan)
+    return out
 
 
 def _add(normal: dict, on: np.ndarray, keys, tangential: Callable[[], dict]) -> dict:
@@ -343,17 +342,7 @@ def _history_with_depth(names, profile, x, y, z, *, a, nu, mu, amplitude, histor
             "dpdz": interior_dpdz_tangential(*(v[on] for v in at), c, P["nu"][on], P["mu"][on], profile, **kw)})
     below = _surface(valued, P["scale"], P["dpdz_scale"], stress=stress, dpdz=lambda: dpdz()["dpdz"],
                      region=lambda: None)
-    for n in valued:
-        values = np.empty(shape)
-        if n in out:
-            values[~deep] = np.broadcast_to(out[n], shape)[~deep]
-        values[deep] = _unresolved_nan(below[n])
-        out[n] = values
-    if "validity" in names:
-        flag = validity_flag(*(out[n] for n in valued))
-        unresolved = deep & np.any([~np.isfinite(out[n]) for n in valued], axis=0) if valued else deep & False
-        out["validity"] = np.where(unresolved, np.int8(UNRESOLVED), flag).astype(np.int8)
-    return out, route
+    return _merge_depth(out, below, names, valued, deep, shape), route
 
 
 def _history_displacements(names, profile, x, y, z, *, a, nu, mu, amplitude, history, step, method, rtol):
