@@ -766,7 +766,7 @@ def slip_ratio(profile: Profile, a, fx) -> np.ndarray:
     """rho = G* u_x0 / (mu E* delta) = [g(a) - g(c)] / g(a) (docs/theory/axisymmetric.md (A32)) of the
     tangential force F_x = fx mu F_N, 0 <= fx <= 1.
 
-    Cattaneo–Mindlin in the MDR: F_x = mu [F_N(a) - F_N(c)] (the integral of (A34)), so c solves
+    Cattaneo–Mindlin in the MDR: F_x = mu [F_N(a) - F_N(c)] ((A107), the integral of (A34)), so c solves
     F_N(c) = (1 - fx) F_N(a).  Power laws: (c/a)^(n+1) = 1 - fx and rho = 1 - (1 - fx)^(n/(n+1)),
     evaluated as -expm1 of a log1p (no cancellation as fx -> 0); tabulated: c by ``radius_at_force``;
     flat punch: it sticks whole up to gross slip with F_x = 2 a G* u_x0 (A37), so rho = fx.
