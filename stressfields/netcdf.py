@@ -116,8 +116,13 @@ def compute(delayed, *, progress: bool = False, scheduler=None) -> None:
         pool = ThreadPoolExecutor(workers)
         try:
             delayed.compute(scheduler="threads", pool=pool, num_workers=workers)
-        finally:
-            pool.shutdown(wait=True, cancel_futures=True)
+        except BaseException as exc:
+            # interrupted (Ctrl-C, a signal; not a failed task): the caller removes the temporary
+            # without waiting for the running tasks, one of which may wait on a lock the interrupted
+            # main thread held
+            pool.shutdown(wait=isinstance(exc, Exception), cancel_futures=True)
+            raise
+        pool.shutdown(wait=True)
 
 
 def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, overwrite: bool = False,
