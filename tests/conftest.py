@@ -1,4 +1,9 @@
 import json
+import os
+import signal
+import subprocess
+import sys
+import time
 from pathlib import Path
 
 DATA = Path(__file__).resolve().parent / "data"
@@ -8,3 +13,20 @@ def load_reference(name: str) -> dict:
     """Reference values of tests/data/<name>.json (provenance in tests/data/README.md):
     "axisymmetric_surface", "graded_power_law" or "wavy_tsukanov"."""
     return json.loads((DATA / f"{name}.json").read_text())
+
+
+def kill_after_two_parts(recipe: Path, target: Path, timeout: float) -> dict:
+    """Start `stressfields run RECIPE -o TARGET --parts` in a process, SIGKILL it once its manifest
+    lists two finished parts, and return the manifest (the run must still have been going)."""
+    proc = subprocess.Popen([sys.executable, "-m", "stressfields", "run", str(recipe), "-o", str(target), "-q",
+                             "--parts"], stderr=subprocess.PIPE)
+    manifest = target.parent / f"{target.name}.parts" / "manifest.json"
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline and proc.poll() is None:
+        if manifest.exists() and len(json.loads(manifest.read_text())["parts"]) >= 2:
+            break
+        time.sleep(0.01)
+    assert proc.poll() is None, "the run finished before it could be killed; make the recipe larger"
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    return json.loads(manifest.read_text())

@@ -1,14 +1,10 @@
 """A run killed at any moment leaves no file at the target and no corrupt part; --resume finishes
 it and the content hash equals that of an uninterrupted run."""
 import json
-import os
-import signal
-import subprocess
-import sys
-import time
 
 from stressfields import cli
 from stressfields.hashing import file_hash
+from conftest import kill_after_two_parts
 
 RECIPE = """scenario = "conical"
 [parameters]
@@ -28,20 +24,10 @@ def test_sigkill_then_resume(tmp_path):
     whole, target = tmp_path / "whole.nc", tmp_path / "out.nc"
     assert cli.main(["run", str(recipe), "-o", str(whole), "-q"]) == 0
 
-    proc = subprocess.Popen([sys.executable, "-m", "stressfields", "run", str(recipe), "-o", str(target),
-                             "-q", "--parts"], stderr=subprocess.PIPE)
-    manifest = tmp_path / "out.nc.parts" / "manifest.json"
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline and proc.poll() is None:
-        if manifest.exists() and len(json.loads(manifest.read_text())["parts"]) >= 2:
-            break
-        time.sleep(0.01)
-    assert proc.poll() is None, "the run finished before it could be killed; make the recipe larger"
-    os.kill(proc.pid, signal.SIGKILL)
-    proc.wait()
+    plan = kill_after_two_parts(recipe, target, timeout=60)
 
     assert not target.exists()
-    done = json.loads(manifest.read_text())["parts"]
+    done = plan["parts"]
     assert 2 <= len(done) < 12
     for name, digest in done.items():        # every published part is complete and intact
         assert file_hash(tmp_path / "out.nc.parts" / name) == (digest, digest)

@@ -10,6 +10,7 @@ import stressfields as sf
 from stressfields import hashing
 from stressfields.build import default_chunks
 from stressfields.hashing import Keeper, file_hash
+from conftest import kill_after_two_parts
 
 CONE = {"scenario": "conical",
         "parameters": {"nu": 0.3, "ux0": 0.25, "mu": [0.0, 0.3, 0.4], "y": [0.0, 0.3, 0.6],
@@ -214,11 +215,6 @@ chunks = { mu = 1 }
 
 
 def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part(tmp_path, monkeypatch):
-    import os
-    import signal
-    import subprocess
-    import sys
-    import time
 
     import netCDF4
 
@@ -228,18 +224,7 @@ def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part
     recipe.write_text(KILLED)
     whole, target = tmp_path / "whole.nc", tmp_path / "out.nc"
     assert cli.main(["run", str(recipe), "-o", str(whole), "-q"]) == 0
-    proc = subprocess.Popen([sys.executable, "-m", "stressfields", "run", str(recipe), "-o", str(target), "-q",
-                             "--parts"], stderr=subprocess.PIPE)
-    manifest = tmp_path / "out.nc.parts" / "manifest.json"
-    deadline = time.monotonic() + 120
-    while time.monotonic() < deadline and proc.poll() is None:
-        if manifest.exists() and len(json.loads(manifest.read_text())["parts"]) >= 2:
-            break
-        time.sleep(0.01)
-    assert proc.poll() is None, "the run finished before it could be killed; make the recipe larger"
-    os.kill(proc.pid, signal.SIGKILL)
-    proc.wait()
-    plan = json.loads(manifest.read_text())
+    plan = kill_after_two_parts(recipe, target, timeout=120)
     assert plan["edges"] == [0, 4, 8, 12, 16] and 2 <= len(plan["parts"]) < 4
     # a finished part damaged after the kill: readable, one value changed, its stored hash now stale
     with netCDF4.Dataset(tmp_path / "out.nc.parts" / "part-00001.nc", "a") as nc:

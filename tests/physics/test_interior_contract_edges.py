@@ -43,17 +43,22 @@ def _atan(x):
     return total * 2 ** k
 
 
-def _hertz_polar(r, z, nu):
-    """Johnson's (I5) as printed (with its 1/r^2 terms), per p0: sigma_rr, sigma_tt, sigma_zz, sigma_rz."""
-    r2 = r * r
+def _oblate(r2, z):
+    """M, N, S of (I2) in decimal arithmetic: M N = z, M^2 - N^2 = r^2 + z^2 - 1, each from the
+    root without cancellation."""
     A = r2 + z * z - 1
     S = (A * A + 4 * z * z).sqrt()
     if A >= 0:
         M = ((S + A) / 2).sqrt()
-        N = z / M
-    else:
-        N = ((S - A) / 2).sqrt()
-        M = z / N
+        return M, z / M, S
+    N = ((S - A) / 2).sqrt()
+    return z / N, N, S
+
+
+def _hertz_polar(r, z, nu):
+    """Johnson's (I5) as printed (with its 1/r^2 terms), per p0: sigma_rr, sigma_tt, sigma_zz, sigma_rz."""
+    r2 = r * r
+    M, N, S = _oblate(r2, z)
     F = 1 - M * (_atan(1 / M) if M > 1 else PI / 2 - _atan(M))
     n3 = N ** 3
     a1 = ((1 - 2 * nu) / 3) * (1 - n3) / r2
@@ -125,14 +130,7 @@ def test_punch_radial_in_the_far_field_against_decimal():
 def _sliding(x, y, z, nu):
     """(I19)-(I21) as printed (q0 = 1, a = 1), decimal arithmetic."""
     r2 = x * x + y * y
-    A = r2 + z * z - 1
-    S = (A * A + 4 * z * z).sqrt()
-    if A >= 0:
-        M = ((S + A) / 2).sqrt()
-        N = z / M
-    else:
-        N = ((S - A) / 2).sqrt()
-        M = z / N
+    M, N, S = _oblate(r2, z)
     phi = _atan(1 / M) if M > 1 else PI / 2 - _atan(M)
     opm = 1 + M * M
     t20 = (2 * phi - 2 * M / opm) / 2
