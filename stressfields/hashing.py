@@ -10,7 +10,7 @@ scheduler.
 
 A run hashes the values it writes from memory, as they were computed (`Keeper`): the same bytes in
 the same order as reading the file back, without the read. Reading back (`file_hash`, `verify`)
-remains the check of a file: `export`, `stressfields hash` and resumed parts use it.
+remains the check of a file: `export`, `stressfields hash` and runs in parts (`parts`) use it.
 
 Files written before attribute types were hashed carry the hash without them (``legacy``);
 `file_hash` accepts that one when the stored hash is it, so they still verify.
@@ -149,15 +149,6 @@ def slabs(shape: tuple[int, ...], itemsize: int, limit: int = _SLICE_BYTES):
             yield outer + (slice(start, min(shape[k], start + step)),)
 
 
-def stored_hash(path: str | Path) -> str | None:
-    """The content hash stored in a NetCDF file (not recomputed): for a file this process has just
-    written and hashed."""
-    import netCDF4
-
-    with netCDF4.Dataset(path) as nc:
-        return nc.__dict__.get(ATTR)
-
-
 def _bytes(values: np.ndarray):
     """The bytes hashed for a slab: a flat little-endian byte view of numbers (no copy when already
     little-endian and contiguous), the JSON list of text."""
@@ -224,26 +215,18 @@ class Keeper:
                 continue
             used += var.nbytes
             self.blocks[name], self.chunks[name] = {}, var.chunks
-            enc = {k: v for k, v in (encoding or {}).get(name, {}).items() if k == "_FillValue"}
-            keep = self._keeper(name, var.dims, dict(var.attrs), enc)
+            keep = self._keeper(name, stored_form(name, var, encoding))
             out.variables[name].data = var.data.map_blocks(keep, dtype=var.dtype, meta=np.empty((0,) * var.ndim,
                                                                                                var.dtype))
         return out
 
-    def _keeper(self, name, dims, attrs, encoding):
+    def _keeper(self, name, stored):
         store = self.blocks[name]
 
         def keep(block, block_info=None):
             if block_info is None:
                 return block
-            stored = block
-            if encoding.get("_FillValue") is not None:
-                # the one encoding that changes a stored number here: +-inf/NaN -> the fill value.
-                # Without it a block is stored as it is, and the encoder is skipped: it costs ~0.13 s
-                # per 1e6-value block when no _FillValue is given (measured), for an unchanged copy
-                stored = np.asarray(xr.conventions.encode_cf_variable(
-                    xr.Variable(dims, block, attrs, encoding), name=name).values)
-            store[tuple(block_info[None]["chunk-location"])] = stored
+            store[tuple(block_info[None]["chunk-location"])] = stored(block)
             return block
         return keep
 
@@ -271,3 +254,19 @@ class Keeper:
                 index = (slice(None),) + tuple(slice(s[i], s[i + 1]) for s, i in zip(starts[1:], rest))
                 band[index] = blocks.pop((i0,) + rest)
             yield band
+
+
+def stored_form(name: str, var: xr.Variable, encoding: dict | None = None):
+    """A function giving a block of ``var`` as the writers store it: after xarray's CF encoding of the
+    variable (``encoding``: the writers' per-variable encodings)."""
+    enc = {k: v for k, v in (encoding or {}).get(name, {}).items() if k == "_FillValue"}
+    if enc.get("_FillValue") is None:
+        # without a fill value a block is stored as it is, and the encoder is skipped: it costs
+        # ~0.13 s per 1e6-value block (measured), for an unchanged copy
+        return lambda block: block
+    dims, attrs = var.dims, dict(var.attrs)
+
+    def stored(block):
+        # the one encoding that changes a stored number here: +-inf/NaN -> the fill value
+        return np.asarray(xr.conventions.encode_cf_variable(xr.Variable(dims, block, attrs, enc), name=name).values)
+    return stored

@@ -125,8 +125,7 @@ def compute(delayed, *, progress: bool = False, scheduler=None) -> None:
         pool.shutdown(wait=True)
 
 
-def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, overwrite: bool = False,
-          fill=None) -> Path:
+def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, overwrite: bool = False) -> Path:
     """Compute ``ds`` chunk by chunk and write it to ``target`` atomically.
 
     The file appears under its final name only once it is complete, with its content hash (see
@@ -134,53 +133,72 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     written where they fit `hashing.KEEP_BYTES` (`hashing.Keeper`), else read back (as are values
     computed on a cluster); the caller has checked the target (`writers.check_target`);
     without ``overwrite`` a file another run published meanwhile is never replaced (`publish`).
-    ``scheduler`` is passed to dask (None: the local threads). ``fill(tmp_path)``, if given, writes
-    the values instead of computing ``ds`` (used to join finished parts) and returns the content hash
-    of the file it filled, or None to have it read back and hashed.
+    ``scheduler`` is passed to dask (None: the local threads).
     """
     target = Path(target)
-    parent = target.parent if str(target.parent) else Path(".")
     clean_stale(target)
     tmp = str(temporary(target, ".tmp"))
-    flushing = None
-    try:
+    with removed_on_failure(tmp, target):
         encoding = _encoding(ds)
-        keeper = Keeper() if fill is None and local(scheduler) else None
+        keeper = Keeper() if local(scheduler) else None
         if keeper is not None:
             ds = keeper.wrap(ds, encoding)
         delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding, compute=False)
-        digest = None
-        if fill is None:
-            compute(delayed, progress=progress, scheduler=scheduler)
-        else:
-            # the values come from elsewhere (finished parts): the layout is written above; `fill`
-            # may return the content hash of what it wrote, computed from the values as they passed
-            digest = fill(tmp)
-        flushing = _flush_soon(tmp)       # the disk takes the values while they are hashed from memory
-        stamp(tmp, keeper.values() if keeper is not None else None, digest=digest)
-        flushing.result()
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
+        compute(delayed, progress=progress, scheduler=scheduler)
         os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
-        publish(Path(tmp), target, overwrite)
-    except OutputError:
-        _remove(tmp)
-        raise
-    except OSError as exc:
-        _remove(tmp)
-        raise OutputError(f"cannot write {target}: {exc.strerror or exc}{_space(parent)}") from exc
-    except RuntimeError as exc:
-        _remove(tmp)
-        if str(exc).startswith("NetCDF:"):     # the HDF5 layer reports I/O failures this way
-            raise OutputError(f"cannot write {target}: {exc}{_space(parent)}") from exc
-        raise
-    except BaseException:
-        _remove(tmp)
-        raise
-    finally:
-        if flushing is not None:
-            flushing.cancel()
+        finish(Path(tmp), target, overwrite, keeper.values() if keeper is not None else None)
     return target
+
+
+def finish(tmp: Path, target: Path, overwrite: bool, values: dict | None = None) -> None:
+    """Hash the complete file ``tmp`` (``values`` as for `hashing.stamp`), store the hash, make it
+    durable and publish it as ``target``."""
+    flushing = _flush_soon(str(tmp))       # the disk takes the values while they are hashed
+    try:
+        stamp(tmp, values)
+        flushing.result()
+    finally:
+        flushing.cancel()
+    with open(tmp, "rb+") as fh:
+        os.fsync(fh.fileno())
+    publish(tmp, target, overwrite)
+
+
+class removed_on_failure:
+    """Remove the temporary ``tmp`` of ``target`` if the block fails in any way (an interrupt
+    included), and report I/O failures as one OutputError naming the target and the free space."""
+
+    def __init__(self, tmp, target: Path):
+        self.tmp, self.target = str(tmp), target
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, kind, exc, tb):
+        if kind is None:
+            return False
+        _remove(self.tmp)
+        parent = self.target.parent if str(self.target.parent) else Path(".")
+        if isinstance(exc, OSError) and not isinstance(exc, OutputError):
+            raise OutputError(f"cannot write {self.target}: {exc.strerror or exc}{_space(parent)}") from exc
+        if isinstance(exc, RuntimeError) and str(exc).startswith("NetCDF:"):   # HDF5's I/O failures
+            raise OutputError(f"cannot write {self.target}: {exc}{_space(parent)}") from exc
+        return False
+
+
+def layout(ds: xr.Dataset, path: Path) -> None:
+    """Create the NetCDF file ``path`` for ``ds`` with its dimensions, attributes, encodings and
+    in-memory variables, leaving the values of its dask variables unwritten (`parts` fills them in
+    place); the file is closed and durable on return."""
+    delayed = ds.to_netcdf(path, engine="netcdf4", encoding=_encoding(ds), compute=False)
+    # xarray keeps the file open for the deferred values; dropping them closes it (its file manager
+    # closes on release) and nothing holds it afterwards
+    del delayed
+    import gc
+
+    gc.collect()
+    with open(path, "rb+") as fh:
+        os.fsync(fh.fileno())
 
 
 def _flush_soon(path: str):

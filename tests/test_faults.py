@@ -164,53 +164,90 @@ def test_a_second_run_holding_no_lock_is_refused_before_computing(tmp_path):
 
 
 def _interrupted_parts(tmp_path, whole, monkeypatch):
-    """All parts finished, the join never ran (as if killed just before it)."""
+    """All parts written, the file never hashed nor published (as if killed just before)."""
     recipe, _ = whole
     target = tmp_path / "out.nc"
 
     def killed(*args, **kwargs):
         raise KeyboardInterrupt
     with monkeypatch.context() as m:
-        m.setattr(parts, "_join", killed)
+        m.setattr(netcdf, "finish", killed)
         with pytest.raises(KeyboardInterrupt):
             sf.write(sf.generate(recipe), target, parts=True)
     return recipe, target, tmp_path / "out.nc.parts"
 
 
+def _computed_parts(monkeypatch):
+    """The first row of every part computed from here on."""
+    rows = []
+    real = parts._store
+
+    def spy(nc, sources, *args):
+        rows.append(next(region[0].start for name, _, region in sources if name == "sigma_xx"))
+        return real(nc, sources, *args)
+    monkeypatch.setattr(parts, "_store", spy)
+    return rows
+
+
 def test_damaged_parts_are_computed_again(tmp_path, whole, monkeypatch):
     recipe, target, folder = _interrupted_parts(tmp_path, whole, monkeypatch)
-    with open(folder / "part-00001.nc", "r+b") as fh:      # truncated
-        fh.truncate(os.path.getsize(folder / "part-00001.nc") // 2)
-    with open(folder / "part-00002.nc", "r+b") as fh:      # a flipped byte in the HDF5 signature
-        fh.seek(1)
-        byte = fh.read(1)
-        fh.seek(1)
-        fh.write(bytes([byte[0] ^ 0xFF]))
-    (folder / "part-00003.nc").write_bytes(b"")            # emptied
-    with netCDF4.Dataset(folder / "part-00004.nc", "a") as nc:     # readable, one value changed
-        nc["sigma_xx"][0, 0, 3, 4] += 1.0
+    manifest = json.loads((folder / "manifest.json").read_text())
+    assert sorted(manifest["parts"]) == [str(i) for i in range(8)]
+    with netCDF4.Dataset(folder / "data.nc", "a") as nc:     # one value of part 1 changed on disk
+        nc["sigma_xx"][1, 0, 3, 4] += 1e-12
+    manifest["parts"]["3"] = manifest["parts"]["3"][:-1]       # a record of the wrong length
+    manifest["parts"]["5"][0] ^= 1                              # a record that does not match the file
+    manifest["parts"]["6"] = {"crc": "x"}                       # a record of the wrong shape
+    del manifest["parts"]["7"]                                  # not finished
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    computed = _computed_parts(monkeypatch)
     assert cli.main(["run", str(recipe), "-o", str(target), "-q", "--resume"]) == 0
+    assert computed == [1, 3, 5, 6, 7]
     assert _verified(target) == whole[1]
     assert _leftovers(tmp_path) == []
 
 
-def test_part_names_come_from_the_plan_never_from_the_manifest(tmp_path, whole, monkeypatch):
+@pytest.mark.parametrize("damage", ["truncated", "signature", "emptied", "missing", "not laid out"])
+def test_a_damaged_file_of_parts_is_laid_out_again(tmp_path, whole, monkeypatch, damage):
     recipe, target, folder = _interrupted_parts(tmp_path, whole, monkeypatch)
-    # another file of the same recipe's layout, listed under a hostile name with its own valid hash
-    evil = tmp_path / "evil.nc"
-    os.replace(folder / "part-00000.nc", evil)
-    with netCDF4.Dataset(evil, "a") as nc:
-        nc["sigma_xx"][:] = 7.0
-    netcdf.stamp(evil)
-    manifest = json.loads((folder / "manifest.json").read_text())
-    manifest["parts"]["../evil.nc"] = manifest["parts"].pop("part-00000.nc")
-    manifest["parts"]["../evil.nc"] = file_hash(evil)[0]
-    manifest["parts"]["/etc/passwd"] = "0" * 64
-    (folder / "manifest.json").write_text(json.dumps(manifest))
-    before = evil.read_bytes()
+    data = folder / "data.nc"
+    if damage == "truncated":
+        with open(data, "r+b") as fh:
+            fh.truncate(os.path.getsize(data) // 2)
+    elif damage == "signature":          # a flipped byte in the HDF5 signature
+        with open(data, "r+b") as fh:
+            fh.seek(1)
+            byte = fh.read(1)
+            fh.seek(1)
+            fh.write(bytes([byte[0] ^ 0xFF]))
+    elif damage == "emptied":
+        data.write_bytes(b"")
+    elif damage == "missing":
+        data.unlink()
+    else:                                # killed while laying it out: the manifest does not say it is
+        manifest = json.loads((folder / "manifest.json").read_text())
+        del manifest["laid_out"]
+        (folder / "manifest.json").write_text(json.dumps(manifest))
+    computed = _computed_parts(monkeypatch)
     assert cli.main(["run", str(recipe), "-o", str(target), "-q", "--resume"]) == 0
+    assert len(computed) == 8
     assert _verified(target) == whole[1]
-    assert evil.read_bytes() == before
+    assert _leftovers(tmp_path) == []
+
+
+def test_blocks_come_from_the_plan_never_from_the_manifest(tmp_path, whole, monkeypatch):
+    recipe, target, folder = _interrupted_parts(tmp_path, whole, monkeypatch)
+    outside = tmp_path / "evil.nc"
+    outside.write_bytes(b"not to be read or written")
+    manifest = json.loads((folder / "manifest.json").read_text())
+    for key in ("../evil.nc", "/etc/passwd", "-1", "99", "0.5"):
+        manifest["parts"][key] = [0, 1, 2]
+    (folder / "manifest.json").write_text(json.dumps(manifest))
+    computed = _computed_parts(monkeypatch)
+    assert cli.main(["run", str(recipe), "-o", str(target), "-q", "--resume"]) == 0
+    assert computed == []                  # the eight parts of the plan verified; the rest ignored
+    assert _verified(target) == whole[1]
+    assert outside.read_bytes() == b"not to be read or written"
 
 
 @pytest.mark.parametrize("text", ["[]", "{}", '{"parts": []}', "not json", '"x"'])

@@ -1,7 +1,6 @@
 """The write path: values hashed from memory as they are written (the same digest as reading the file
-back), default chunking that keeps both cores busy, parts written and hashed once."""
-import dataclasses
-import json
+back), default chunking that keeps both cores busy, parts written once into the output and hashed once."""
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -157,36 +156,33 @@ def test_small_sweeps_stay_one_chunk_and_requests_are_kept():
     assert len(ds.sigma_xx.chunks[0]) * len(ds.sigma_xx.chunks[1]) * len(ds.sigma_xx.chunks[2]) >= 4
 
 
-def test_parts_are_hashed_once_when_written(tmp_path, monkeypatch):
-    """The manifest takes the hash each part stored while written; no part is read back to hash it."""
-    calls = []
-    real = hashing.file_hash
-    monkeypatch.setattr("stressfields.parts.file_hash", lambda p: calls.append(p) or real(p))
+def test_parts_write_each_value_once_into_one_file_hashed_once(tmp_path, monkeypatch):
+    """No file per part and no join: every block is written once, into the output's own file, which
+    is read back once to hash it."""
+    from stressfields import netcdf
+
+    reads, writes = [], []
+    real_hash, real_write = hashing.file_hash, netcdf.write
+    monkeypatch.setattr(hashing, "file_hash", lambda p: reads.append(p) or real_hash(p))
+    monkeypatch.setattr(netcdf, "write", lambda *a, **k: writes.append(a) or real_write(*a, **k))
     ds = sf.generate(CONE, chunks={"mu": 1})
     target = sf.write(ds, tmp_path / "p.nc", parts=True)
-    assert calls == []
-    assert file_hash(target)[0] == file_hash(sf.write(ds, tmp_path / "whole.nc"))[0]
+    assert writes == [] and [Path(r).name for r in reads] == ["data.nc"]
+    monkeypatch.setattr(hashing, "file_hash", real_hash)
+    monkeypatch.setattr(netcdf, "write", real_write)
+    assert file_hash(target)[0] == file_hash(target)[1] == file_hash(sf.write(ds, tmp_path / "whole.nc"))[0]
     assert not (tmp_path / "p.nc.parts").exists()
-    json.dumps(calls)
 
 
-@pytest.mark.parametrize("limit", [16 * 2 ** 20, 64, 8])
-def test_the_join_hashes_what_it_copies(tmp_path, monkeypatch, limit):
-    """The joined file is hashed from the slabs copied into it; read back, it gives the same digest,
-    and so does an uninterrupted run. Small slab limits cut rows into pieces (integer indices)."""
-    from stressfields import parts
-
-    monkeypatch.setattr(parts._stream_copy, "__defaults__", (limit,))
+@pytest.mark.parametrize("options", [{"nonfinite": "fill"}, {"dtype": "float32"}, {"compression": 4}])
+def test_parts_store_what_a_whole_run_stores(tmp_path, options):
+    """The parts' blocks pass the same encodings as a whole run (NaN/inf to the fill value, float32,
+    compressed chunks): the same stored values, the same content hash."""
     recipe = {**CONE, "parameters": {**CONE["parameters"], "nu": [0.2, 0.3]}}
     ds = sf.generate(recipe, chunks={"nu": 1})
-    reads = []
-    real = hashing.file_hash
-    monkeypatch.setattr(hashing, "file_hash", lambda p: reads.append(p) or real(p))
-    joined = sf.write(ds, tmp_path / "joined.nc", parts=True, nonfinite="fill")
-    assert reads == []                      # neither the parts nor the joined file were read back to hash
-    monkeypatch.setattr(hashing, "file_hash", real)
-    digest, stored = file_hash(joined)
-    assert digest == stored == file_hash(sf.write(ds, tmp_path / "whole.nc", nonfinite="fill"))[0]
+    parted = sf.write(ds, tmp_path / "parted.nc", parts=True, **options)
+    digest, stored = file_hash(parted)
+    assert digest == stored == file_hash(sf.write(ds, tmp_path / "whole.nc", **options))[0]
 
 
 def test_large_rows_are_grouped_so_a_part_has_four_tasks():
@@ -215,10 +211,9 @@ chunks = { mu = 1 }
 
 
 def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part(tmp_path, monkeypatch):
-
     import netCDF4
 
-    from stressfields import cli
+    from stressfields import cli, parts
 
     recipe = tmp_path / "r.toml"
     recipe.write_text(KILLED)
@@ -226,34 +221,15 @@ def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part
     assert cli.main(["run", str(recipe), "-o", str(whole), "-q"]) == 0
     plan = kill_after_two_parts(recipe, target, timeout=120)
     assert plan["edges"] == [0, 4, 8, 12, 16] and 2 <= len(plan["parts"]) < 4
-    # a finished part damaged after the kill: readable, one value changed, its stored hash now stale
-    with netCDF4.Dataset(tmp_path / "out.nc.parts" / "part-00001.nc", "a") as nc:
-        nc["von_mises"][0, 5, 7] += 1e-9
-    written = []
-    row = sf.writers.FORMATS["netcdf"]
-
-    def recording(ds, path, **kw):
-        written.append(path.name)
-        return row.write(ds, path, **kw)
-    monkeypatch.setitem(sf.writers.FORMATS, "netcdf", dataclasses.replace(row, write=recording))
+    # a finished part damaged after the kill: one value changed on disk, its CRC now stale
+    with netCDF4.Dataset(tmp_path / "out.nc.parts" / "data.nc", "a") as nc:
+        nc["von_mises"][5, 5, 7] += 1e-9
+    computed = []
+    real = parts._store
+    monkeypatch.setattr(parts, "_store", lambda nc, sources, *a: computed.append(sources[0][2][0].start)
+                        or real(nc, sources, *a))
     assert cli.main(["run", str(recipe), "-o", str(target), "-q", "--resume"]) == 0
-    done = set(plan["parts"]) - {"part-00001.nc"}
-    all_parts = {f"part-{i:05d}.nc" for i in range(4)}
-    assert set(written) - {"out.nc"} == all_parts - done          # the damaged part and the missing ones only
+    done = {int(i) for i in plan["parts"]} - {1}
+    assert set(computed) == {0, 4, 8, 12} - {4 * i for i in done}     # the damaged part and the missing ones only
     assert file_hash(target)[0] == file_hash(target)[1] == file_hash(whole)[0]
     assert not (tmp_path / "out.nc.parts").exists()
-
-
-def test_the_join_reads_back_when_a_large_variable_is_not_streamed(tmp_path, monkeypatch):
-    from stressfields import parts
-
-    monkeypatch.setattr(parts, "_HELD_BYTES", 0)
-    ds = sf.generate(CONE, chunks={"mu": 1})
-    reads = []
-    real = hashing.file_hash
-    monkeypatch.setattr(hashing, "file_hash", lambda p: reads.append(p) or real(p))
-    joined = sf.write(ds, tmp_path / "joined.nc", parts=True)
-    assert len(reads) == 1 and ".joined.nc." in str(reads[0])      # the joined temporary, read back once
-    monkeypatch.setattr(hashing, "file_hash", real)
-    digest, stored = file_hash(joined)
-    assert digest == stored == file_hash(sf.write(ds, tmp_path / "whole.nc"))[0]
