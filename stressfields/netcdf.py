@@ -115,7 +115,7 @@ def compute(delayed, *, progress: bool = False, scheduler=None) -> None:
         workers = os.cpu_count() or 1
         pool = ThreadPoolExecutor(workers)
         try:
-            delayed.compute(scheduler="threads", pool=pool, num_workers=workers)
+            delayed.compute(scheduler=threaded_get, pool=pool, num_workers=workers)
         except BaseException as exc:
             # interrupted (Ctrl-C, a signal; not a failed task): the caller removes the temporary
             # without waiting for the running tasks, one of which may wait on a lock the interrupted

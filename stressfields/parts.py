@@ -27,6 +27,7 @@ import shutil
 import sys
 import threading
 import zlib
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -57,7 +58,17 @@ def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool 
         if not manifest.get("laid_out") or not _opens(data):
             _lay_out(ds, folder, manifest)
         encoding = netcdf._encoding(ds)
-        with _open(data) as nc:
+        pending = None
+
+        def listed(pending):
+            """List a part once its values are on disk."""
+            if pending is not None:
+                i, crcs, synced = pending
+                synced.result()
+                manifest["parts"][str(i)] = crcs
+                _dump(folder, manifest)
+        # a part's fsync runs while the next part is computed (a 1e8-point run: 25 fsyncs of 350 MB)
+        with _open(data) as nc, ThreadPoolExecutor(1) as disk:
             for i, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
                 sources = _sources(ds, encoding, dim, lo, hi, first=i == 0)
                 if _intact(nc, sources, manifest["parts"].get(str(i))):
@@ -66,10 +77,10 @@ def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool 
                 if progress:
                     print(f"  part {i + 1}/{len(edges) - 1}: {dim}[{lo}:{hi}]", file=sys.stderr)
                 crcs = _store(nc, sources, scheduler, progress)
-                nc.sync()
-                _fsync(data)
-                manifest["parts"][str(i)] = crcs
-                _dump(folder, manifest)
+                nc.sync()           # HDF5's buffers to the file, then the file to the disk
+                listed(pending)
+                pending = (i, crcs, disk.submit(_fsync, data))
+            listed(pending)
         if progress:
             print(f"  hashing {data.stat().st_size / 1e9:.2f} GB", file=sys.stderr)
         netcdf.finish(data, target, overwrite)

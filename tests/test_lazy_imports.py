@@ -114,3 +114,25 @@ def test_api_names_still_work():
             "and 'conical' in sf.scenarios())")       # after the subpackage was imported too
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert done.stdout.strip() == "True", done.stderr
+
+
+@pytest.mark.parametrize("scheduler", ["threads", "synchronous"])
+def test_a_local_run_does_not_import_dask_distributed(tmp_path, scheduler):
+    """Only `--scheduler ADDRESS` loads dask.distributed (when it is installed, dask and xarray would
+    otherwise import it to look for a client); the run's file is the same, and the process is left
+    as it was (an in-process run must not hide dask.distributed from what comes after)."""
+    pytest.importorskip("distributed")
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('scenario = "conical"\n[parameters]\nmu = 0.3\nux0 = 0.25\n'
+                      'x = { start = -1.5, stop = 1.5, num = 101 }\ny = { start = -1.5, stop = 1.5, num = 99 }\n')
+    code = ("import sys; from stressfields.cli import main\n"
+            f"code = main(['run', {str(recipe)!r}, '-o', {str(tmp_path / 'o.nc')!r}, '-q', '--scheduler', "
+            f"{scheduler!r}])\n"
+            "print(code, 'distributed' in sys.modules, 'dask.distributed' in sys.modules)\n"
+            "import dask.distributed\nprint('importable')")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert done.stdout.split("\n")[:2] == ["0 False False", "importable"], done.stderr
+    from stressfields.hashing import file_hash
+
+    digest, stored = file_hash(tmp_path / "o.nc")
+    assert digest == stored

@@ -233,3 +233,20 @@ def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part
     assert set(computed) == {0, 4, 8, 12} - {4 * i for i in done}     # the damaged part and the missing ones only
     assert file_hash(target)[0] == file_hash(target)[1] == file_hash(whole)[0]
     assert not (tmp_path / "out.nc.parts").exists()
+
+
+def test_processes_write_zarr_and_refuse_netcdf_before_any_work(tmp_path, capsys):
+    """Other processes can write a Zarr store's chunks, not an HDF5 file's: `--scheduler processes`
+    with a NetCDF target is one line and exit 2, with nothing computed or left behind."""
+    pytest.importorskip("zarr")
+    from stressfields import cli
+
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('scenario = "conical"\n[parameters]\nmu = 0.3\nux0 = 0.25\n'
+                      'x = { start = -1.5, stop = 1.5, num = 41 }\ny = { start = -1.5, stop = 1.5, num = 39 }\n')
+    assert cli.main(["run", str(recipe), "-o", str(tmp_path / "o.nc"), "-q", "--scheduler", "processes"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Zarr" in err and list(tmp_path.iterdir()) == [recipe]
+    assert cli.main(["run", str(recipe), "-o", str(tmp_path / "o.zarr"), "-q", "--scheduler", "processes"]) == 0
+    assert cli.main(["run", str(recipe), "-o", str(tmp_path / "t.zarr"), "-q"]) == 0
+    assert file_hash(tmp_path / "o.zarr") == file_hash(tmp_path / "t.zarr")
