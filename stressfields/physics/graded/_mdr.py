@@ -36,7 +36,7 @@ def _pieces(lo, hi, breaks):
         yield x0, x1
 
 
-def _singular_piece(x0, x1, delta, alpha, p_sing, integrand_x, rtol, toward_left):
+def _singular_piece(x0, x1, delta, alpha, p_sing, integrand_x, rtol, toward_left, level=3):
     """int over [x0, x1] of integrand_x(x) * dist(x)^alpha, where dist = delta + (x - x0)
     (toward_left) or delta + (x1 - x) (otherwise), delta >= 0 the distance of the piece to the
     singular point.  The substitution (x - x0) = L v^p uses p = p_sing where delta == 0."""
@@ -60,7 +60,7 @@ def _singular_piece(x0, x1, delta, alpha, p_sing, integrand_x, rtol, toward_left
             fx = integrand_x(x)          # (np.where branches not taken may overflow harmlessly)
         return Ls * p * jac * fx
 
-    return quadrature.integrate(integrand, rtol=rtol)
+    return quadrature.integrate(integrand, rtol=rtol, level=level)
 
 
 def foundation_integral(a, fn, params, rtol, breaks=()):
@@ -85,13 +85,14 @@ def _scaled_breaks(breaks, lam):
     return [b / lam for b in np.asarray(breaks, float)]
 
 
-def pressure_integral(r, a, dg, params, rtol, breaks=(), lam=1.0):
+def pressure_integral(r, a, dg, params, rtol, breaks=(), lam=1.0, level=3):
     """(1/pi) int_r^a dg(x) (x^2 - r^2)^(-(1-k)/2) dx: eq. (13) with u'_1D = -g' on (0, a).
 
     Zero for r >= a.  The singular factor (x - r)^(-(1-k)/2) is removed with p = 2/(1+k).
     ``r``, ``a`` may be given in units of ``lam`` (physical radii lam r, lam a; e.g. r/a and 1
     with lam = a, so that the edge distance 1 - r/a is exact): the integral is then
-    lam^k (1/pi) int dg(lam x) (x^2 - r^2)^(-(1-k)/2) dx.
+    lam^k (1/pi) int dg(lam x) (x^2 - r^2)^(-(1-k)/2) dx.  ``level``: the first tanh-sinh level
+    away from the centre (the step then halves until two levels agree to rtol).
     """
     r, a = np.broadcast_arrays(np.asarray(r, float), np.asarray(a, float))
     shape = np.broadcast(r, lam, *params.values()).shape
@@ -114,7 +115,7 @@ def pressure_integral(r, a, dg, params, rtol, breaks=(), lam=1.0):
     for sel, fn in ((split, _centre_part), (~split, _general_part)):
         if sel.any():
             sub = {key: v[sel] for key, v in P.items()}
-            total[sel] = fn(sub, dg, g0[sel] if fn is _centre_part else None, _select(breaks, sel), rtol)
+            total[sel] = fn(sub, dg, g0[sel] if fn is _centre_part else None, _select(breaks, sel), rtol, level)
     lam_k = np.broadcast_to(np.asarray(lam, float), shape)[m] ** np.broadcast_to(params["k"], shape)[m]
     out[m] = lam_k * total / np.pi
     return out
@@ -128,7 +129,7 @@ def _select(breaks, mask):
     return np.asarray(breaks)[:, np.ravel(mask)]
 
 
-def _general_part(P, dg, _, breaks, rtol):
+def _general_part(P, dg, _, breaks, rtol, level=3):
     """(x^2 - r^2)^(-(1-k)/2) removed at x = r by p = 2/(1+k); at the centre (only where g'(0) is
     unbounded) both kernel factors are singular at x = 0 and x^(-(1-k)) is removed by p = 1/k."""
     P = dict(P)
@@ -141,11 +142,12 @@ def _general_part(P, dg, _, breaks, rtol):
     for x0, x1 in _pieces(ri, ai, _scaled_breaks(breaks, lam)):
         total = total + _singular_piece(
             x0, x1, x0 - ri, alpha_s, p_s,
-            lambda x: dg(lam * x, **P) * np.where(centre, 1.0, (x + ri) ** alpha), rtol, toward_left=True)
+            lambda x: dg(lam * x, **P) * np.where(centre, 1.0, (x + ri) ** alpha), rtol, toward_left=True,
+            level=level)
     return total
 
 
-def _centre_part(P, dg, g0, breaks, rtol):
+def _centre_part(P, dg, g0, breaks, rtol, _level=None):
     P = dict(P)
     P.pop("r")
     a, lam = P.pop("a"), P.pop("lam")

@@ -22,6 +22,7 @@ from scipy.interpolate import CubicSpline
 from scipy.special import beta as _B, betainc, betaincc
 
 from .. import quadrature
+from . import fastsum
 from ._validate import as_array, check_k, check_positive
 from .material import cos_half_pi_k
 
@@ -106,8 +107,9 @@ class Tabulated:
     Because the spline is piecewise cubic, the transform (5) is done exactly, piece by piece, with
     regularised incomplete beta functions (:meth:`g`, :meth:`dg`; docs/theory/graded.md (G14)); the
     outer MDR integrals are split at the knots (``breaks``), where the integrands are not smooth.
-    Each g' costs O(knots): the panel rules (:meth:`dg_panels`) form it once per (a, k) on a fixed
-    number of nodes per panel, shared by every point ((number of knots)^2 work per (a, k)).
+    The panel rules (:meth:`dg_panels`) form g' once per (a, k, order) on a fixed number of nodes per
+    panel, shared by every point, by the block tree of :meth:`dg_fast`: O(log knots) per node
+    (docs/theory/graded.md (G52)-(G54)), where the sum (G14) over every piece costs O(knots).
     """
 
     def __init__(self, r, f, slope_at_0=None):
@@ -129,6 +131,8 @@ class Tabulated:
         self._b = np.stack([3 * c3 * ri ** 2 - 2 * c2 * ri + c1, 2 * c2 - 6 * c3 * ri, 3 * c3])
         self._lo, self._hi = r[:-1], r[1:]
         self.evaluations = 0          # nodes at which g' was formed for the panel rules (dg_panels)
+        self.block_terms = 0          # dg_fast: kernel values at the Chebyshev points of far blocks
+        self.exact_terms = 0          # dg_fast: (node, piece) pairs summed exactly by (G14)
 
     def _arg(self, r):
         r = np.abs(np.asarray(r, dtype=float))
@@ -152,7 +156,7 @@ class Tabulated:
         ``order``: the map vanishes quadratically at both panel ends, which smooths the
         (x - r_i)^((3+k)/2) terms that the knots leave in g' (docs/theory/graded.md (G14)) and the
         (a - x)^((1-k)/2) end of the displacement kernel of (G49).  Cached per (a, k, order), so
-        every row of a sweep reuses one evaluation of the exact beta sums; ``evaluations`` counts
+        every row of a sweep reuses one evaluation of g' (:meth:`dg_fast`); ``evaluations`` counts
         the nodes at which g' was formed.
         """
         key = (float(a), float(k), int(order))
@@ -167,8 +171,8 @@ class Tabulated:
                 wx.append((L * du).ravel())
             x, wx = np.concatenate(x), np.concatenate(wx)
             self.evaluations += x.size
-            # blocks of 256 nodes bound the (nodes x pieces) work arrays (~2 MB per 1000 pieces)
-            dg = np.concatenate([self.dg(x[i:i + 256], float(k)) for i in range(0, x.size, 256)])
+            # blocks of 8192 nodes bound the (node, block) pair arrays of the tree (~40 MB at p = 24)
+            dg = np.concatenate([self.dg_fast(x[i:i + 8192], float(k)) for i in range(0, x.size, 8192)])
             cache[key] = (x, wx, dg)
         return cache[key]
 
@@ -184,6 +188,28 @@ class Tabulated:
         last = knots[-1] - knots[-2]
         cuts = knots[-1] - last * _EDGE_GRADING ** np.arange(0, 39)
         return knots[:-1], np.append(cuts, knots[-1])
+
+    def contact_knots(self, a):
+        """0, the knots below a (as in :meth:`dg_panels`) and a."""
+        return np.append(self._panel_edges(a)[0], float(a))
+
+    def panel_edges(self, a):
+        """Every panel edge of :meth:`dg_panels` on [0, a] in order: the knot panels, then the cuts of the last."""
+        smooth, cuts = self._panel_edges(a)
+        return np.concatenate([smooth, cuts[1:]])
+
+    def panel_tree(self, a, k, order, p, power=0.0):
+        """Block tree (G52) of the density w g'(t) t^power on the panel nodes of :meth:`dg_panels`,
+        ``p`` Chebyshev points per block; cached per (a, k, order, p, power), no new g'."""
+        key = (float(a), float(k), int(order), int(p), float(power))
+        cache = self.__dict__.setdefault("_tree_cache", {})
+        if key not in cache:
+            t, w, dg = self.dg_panels(a, k, order)
+            edges = self.panel_edges(a)
+            panel = np.repeat(np.arange(edges.size - 1), int(order))
+            density = w * dg * (t ** power if power else 1.0)
+            cache[key] = fastsum.BlockTree(edges, t, density, panel, p)
+        return cache[key]
 
     def dg_interpolant(self, a, k, order):
         """g' on [0, a] from its values on the panel nodes of :meth:`dg_panels` (no new evaluation).
@@ -201,6 +227,65 @@ class Tabulated:
         ns = edges[0].size - 1
         vals = dg.reshape(-1, w.size)
         return lambda x: _barycentric(np.asarray(x, float), edges, ns, vals, w, lam)
+
+    def dg_fast(self, x, k):
+        """g'(x) of (G14) at many x (one k) by the block tree of h = d(r f')/dr, docs/theory/graded.md (G52)-(G54).
+
+        g'(x) = x^(-k) int_0^x h(r) (x^2 - r^2)^(-(1-k)/2) dr: spline pieces at least _SEP piece
+        widths below x enter by the Chebyshev moments of h on their block (interpolation error
+        below 1e-15 of the block's part); the few pieces nearer x by their exact beta sums (G14).
+        O(log knots) per node instead of O(knots): (G14) to 1e-13 relative (measured).
+        """
+        x = self._arg(x)
+        shape = x.shape
+        x = x.ravel()
+        k = float(k)
+        out = np.empty(x.shape)
+        live = x > 0.0
+        out[~live] = self._b[0, 0] * 0.5 * _B(0.5, 0.5 * (1.0 + k))
+        xs = x[live]
+        tree = self._h_tree()
+
+        def classify(pt, lo, hi):
+            xi = xs[pt]
+            return (xi - hi) >= _SEP * (hi - lo), lo < xi       # pieces at or above x add nothing
+
+        accepted, (pt, piece) = fastsum.split(tree, xs.size, classify)
+        q = 0.5 * (1.0 - k)
+        far = tree.far_sum(accepted, lambda c, i: ((xs[i, None] - c) * (xs[i, None] + c)) ** -q, xs.size)
+        near = np.bincount(pt, weights=self._piece_terms(xs[pt], piece, k), minlength=xs.size)
+        self.block_terms += sum(b.size for _, _, b in accepted) * tree.p
+        self.exact_terms += pt.size
+        out[live] = xs ** -k * far + near
+        return out.reshape(shape)
+
+    def _h_tree(self):
+        """The block tree of h = f' + r f'' (cached): _H_ORDER/2 + 1 Gauss-Legendre nodes per spline
+        piece, exact for h (degree 2) times the Lagrange polynomials (degree _H_ORDER - 1) of a block."""
+        tree = self.__dict__.get("_htree")
+        if tree is None:
+            w, W = quadrature.gauss_legendre(_H_ORDER // 2 + 1)
+            L = (self._hi - self._lo)[:, None]
+            t = (self._lo[:, None] + L * w).ravel()
+            h = self._ds(t) + t * self._d2s(t)
+            panel = np.repeat(np.arange(self._lo.size), w.size)
+            tree = fastsum.BlockTree(np.append(self._lo, self._hi[-1]), t, (L * W).ravel() * h, panel, _H_ORDER)
+            self._htree = tree
+        return tree
+
+    def _piece_terms(self, x, piece, k):
+        """Exact part of g'(x) from the spline piece ``piece`` (one per x), the terms of (G14)."""
+        q = 0.5 * (1.0 + k)
+        z = np.minimum(np.stack([self._lo[piece], self._hi[piece]]) / x, 1.0) ** 2
+        high = z > 0.5
+        total = 0.0
+        for m in range(3):
+            pm = 0.5 * (m + 1.0)
+            # differences of I near 1 from the complements (no cancellation), as in _beta_sum
+            J = np.where(high, betaincc(pm, q, z), betainc(pm, q, z))
+            dI = np.where(high[0], J[0] - J[1], np.where(high[1], (1.0 - J[1]) - J[0], J[1] - J[0]))
+            total = total + (m + 1.0) * self._b[m, piece] * x ** m * dI * (0.5 * _B(pm, q))
+        return total
 
     def _beta_sum(self, x, k, weights):
         # sum over pieces and m of w_m b_m x^(m+1) B((m+1)/2, (1+k)/2)/2 [I(hi^2/x^2) - I(lo^2/x^2)]
@@ -242,6 +327,10 @@ class Tabulated:
 
 #: ratio of successive cuts of the last panel towards the contact edge (Tabulated.dg_panels)
 _EDGE_GRADING = 0.3
+#: distance of a block of spline pieces from the node x, in block widths, for its moments (G53)
+_SEP = 1.5
+#: Chebyshev points per block of the g' tree: the bound of (G53) for sep 1.5 gives 1e-17 (G54)
+_H_ORDER = 24
 
 
 def _unsmooth(s):
@@ -269,11 +358,14 @@ def _barycentric(x, edges, ns, vals, w, lam):
         u = np.where(smooth, _unsmooth(u), u)
         v = vals[np.where(smooth, i, ns + j)]
         d = u[:, None] - w[None, :]
-        hit = d == 0.0
-        q = lam / np.where(hit, 1.0, d)
-        bary = np.sum(q * v, axis=1) / np.sum(q, axis=1)
-        exact = np.sum(np.where(hit, v, 0.0), axis=1)
-        out[s:s + 4096] = np.where(hit.any(axis=1), exact, bary)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            q = lam / d
+            bary = np.einsum("ij,ij->i", q, v) / np.sum(q, axis=1)
+        # u on a node (q infinite there, bary NaN): the node value itself (few rows: a cheap repair)
+        hit = ~np.isfinite(bary)
+        if hit.any():
+            bary[hit] = v[hit, np.argmin(np.abs(d[hit]), axis=1)]
+        out[s:s + 4096] = bary
     return out.reshape(x.shape)
 
 
