@@ -313,14 +313,20 @@ def _keep_freed_memory() -> None:
     """Keep the large temporaries of the kernels in the process heap instead of mapping and
     unmapping them for every block (glibc; elsewhere nothing changes). Measured, a 1e8-point run of
     eleven fields in parts: 61.8 s instead of 77.0 s wall, 32 s instead of 51 s of system time, peak
-    memory 1.25 GB instead of 0.68 GB."""
+    memory 1.25 GB instead of 0.68 GB. One arena for every thread: a worker thread's own arena grows
+    in heaps of at most 64 MB, which a kernel's temporaries on a 1e6-point block overflow, and what
+    overflows is mapped and unmapped again each time (a 3.6e7-point run of eleven fields in parts:
+    system time 4.3 s instead of 11.8 s, 1.5e5 page faults instead of 6.7e5, wall 12.6 s instead of
+    18.6 s, peak memory 1.26 GB instead of 2.04 GB). The blocks are few and large, so the threads
+    hardly ever wait on the arena's lock."""
     try:
         import ctypes
 
         libc = ctypes.CDLL("libc.so.6")
-        m_trim_threshold, m_mmap_threshold = -1, -3
+        m_trim_threshold, m_mmap_threshold, m_arena_max = -1, -3, -8
         libc.mallopt(m_mmap_threshold, 1 << 30)
         libc.mallopt(m_trim_threshold, (1 << 31) - 1)
+        libc.mallopt(m_arena_max, 1)
     except (OSError, AttributeError):
         pass
 
