@@ -476,6 +476,7 @@ def _whole_process(cfg: Config) -> dict:
             out.update({f"process_{n * n:.0e}_{label}_{k}": v for k, v in r.items()})
     out.update({f"fixed_{k}": v for k, v in process.fixed_costs().items()})
     out["hertz_mindlin_512_first_call_s"] = process.first_call_hertz_mindlin_512()
+    out["hertz_mindlin_512_first_run_s"] = process.first_run_hertz_mindlin_512()
     out.update(process.machine_limits())
     return out
 
@@ -709,13 +710,21 @@ def _process_lines(tp: dict) -> list[str]:
                 lines.append(f"| {float(size):.0e} | {'eleven' if label == 'all' else 'von Mises'} | "
                              f"{tp[k + 'pipeline_s']:.2f} | {tp[k + 'pipeline_cpu_s']:.2f} | {tp[k + 'hand_s']:.2f} | "
                              f"{tp[k + 'hand_cpu_s']:.2f} | {tp[k + 'ratio_wall']:.2f} | {tp[k + 'ratio_cpu']:.2f} |")
-    lines += ["", f"- Fixed costs (medians of 5 fresh processes): `stressfields describe conical` "
-                  f"{tp['fixed_describe_s']:.2f} s, `import stressfields` {tp['fixed_import_s']:.2f} s, a 1e4-point "
-                  f"`stressfields run` {tp['fixed_run_1e4_s']:.2f} s.",
+    per_point = [f"{float(size):.0e} points {1e9 * tp[f'process_{size}_all_pipeline_cpu_s'] / float(size):.0f} ns "
+                 f"(hand loop {1e9 * tp[f'process_{size}_all_hand_cpu_s'] / float(size):.0f})"
+                 for size in runs if f"process_{size}_all_pipeline_cpu_s" in tp]
+    lines += ["", "- CPU time per point of the whole process, eleven fields: " + ", ".join(per_point) + ".",
+              f"- Fixed costs (medians of 5 fresh processes): `stressfields describe conical` "
+              f"{tp['fixed_describe_s']:.2f} s, `import stressfields` {tp['fixed_import_s']:.2f} s, a 1e4-point "
+              f"`stressfields run` {tp['fixed_run_1e4_s']:.2f} s; the interpreter alone "
+              f"{tp['fixed_bare_python_s']:.2f} s, and importing the libraries any run needs (NumPy, "
+              f"scipy.special, xarray, dask.array, netCDF4) {tp['fixed_dependencies_s']:.2f} s.",
               f"- First call in a fresh process, every surface field of a 512 x 512 Hertz–Mindlin case (imports "
-              f"included): {tp['hertz_mindlin_512_first_call_s']:.2f} s."
+              f"included): {tp['hertz_mindlin_512_first_call_s']:.2f} s through the API (`generate(...).compute()`), "
+              f"{tp['hertz_mindlin_512_first_run_s']:.2f} s as a `stressfields run` writing the NetCDF file."
               + (f" ContactMechanics' 512 x 512 pressure solve in this run: {tp['peer_512_first_s']:.1f} s, "
-                 f"{tp['peer_512_first_s'] / tp['hertz_mindlin_512_first_call_s']:.0f}x longer."
+                 f"{tp['peer_512_first_s'] / tp['hertz_mindlin_512_first_call_s']:.0f}x and "
+                 f"{tp['peer_512_first_s'] / tp['hertz_mindlin_512_first_run_s']:.0f}x longer."
                  if "peer_512_first_s" in tp else ""),
               f"- This machine: SHA-256 {tp['sha256_bytes_per_s'] / 1e9:.2f} GB/s, disk write (fsync'd) "
               f"{tp['disk_bytes_per_s'] / 1e9:.2f} GB/s."]

@@ -118,6 +118,10 @@ def fixed_costs(repeats: int = 5) -> dict:
         out = {}
         for key, cmd in (("describe_s", [exe, "describe", "conical"]),
                          ("import_s", [sys.executable, "-c", "import stressfields"]),
+                         # the floor of any run: the libraries a dataset and its file need
+                         ("dependencies_s", [sys.executable, "-c", "import numpy, scipy.special, xarray, dask.array, "
+                                                                     "netCDF4"]),
+                         ("bare_python_s", [sys.executable, "-c", "pass"]),
                          ("run_1e4_s", [exe, "run", str(recipe), "-o", str(Path(tmp) / "s.nc"), "--quiet",
                                         "--overwrite"])):
             out[key] = statistics.median(_child(cmd)[0] for _ in range(repeats))
@@ -139,6 +143,29 @@ def first_call_hertz_mindlin_512() -> float:
     ''')
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     return float(done.stdout.split()[-1])
+
+
+def first_run_hertz_mindlin_512() -> float:
+    """Wall seconds of `stressfields run` in a fresh process writing every surface field of the
+    512 x 512 Hertz–Mindlin case to NetCDF (imports, the file and its content hash included)."""
+    exe = str(Path(sys.executable).with_name("stressfields"))
+    recipe = textwrap.dedent('''
+        scenario = "parabolic"
+        [parameters]
+        nu = 0.3
+        mu = 0.3
+        ux0 = 0.25
+        y = { start = -1.5, stop = 1.5, num = 512 }
+        x = { start = -1.5, stop = 1.5, num = 512 }
+        [output]
+        variables = ["sigma_xx", "sigma_yy", "sigma_zz", "sigma_xy", "sigma_xz", "sigma_yz", "von_mises",
+                     "sigma_1", "sigma_2", "sigma_3", "tau_max", "dpdz"]
+    ''')
+    with tempfile.TemporaryDirectory() as tmp:
+        path = Path(tmp) / "hm.toml"
+        path.write_text(recipe)
+        return statistics.median(_child([exe, "run", str(path), "-o", str(Path(tmp) / f"hm{i}.nc"), "-q"])[0]
+                                 for i in range(3))
 
 
 def machine_limits(megabytes: int = 512) -> dict:

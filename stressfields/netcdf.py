@@ -15,6 +15,8 @@ import shutil
 import socket
 import sys
 import tempfile
+import threading
+import zlib
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import nullcontext
 from pathlib import Path
@@ -24,7 +26,7 @@ import numpy as np
 import xarray as xr
 
 from .errors import OutputError
-from .hashing import Keeper, stamp
+from .hashing import Keeper, stamp, stored_form
 
 #: host and process that own a temporary: a short hash of the host name (a shared disk may be written
 #: from several machines, whose process ids mean nothing here) and the process id
@@ -140,13 +142,22 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     tmp = str(temporary(target, ".tmp"))
     with removed_on_failure(tmp, target):
         encoding = _encoding(ds)
-        keeper = Keeper() if local(scheduler) else None
-        if keeper is not None:
-            ds = keeper.wrap(ds, encoding)
-        delayed = ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding, compute=False)
-        compute(delayed, progress=progress, scheduler=scheduler)
+        if local(scheduler):
+            # laid out with fill mode off, then every block written once (`store`) and kept for
+            # the hash (`Keeper`)
+            keeper = Keeper()
+            kept = keeper.wrap(ds, encoding)
+            layout(ds, tmp)
+            with open_values(tmp) as nc:
+                store(nc, sources(kept, encoding), scheduler, progress)
+            values = keeper.values()
+        else:
+            # on a cluster xarray's writer: its locks reach the workers
+            compute(ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding, compute=False), progress=progress,
+                    scheduler=scheduler)
+            values = None
         os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
-        finish(Path(tmp), target, overwrite, keeper.values() if keeper is not None else None)
+        finish(Path(tmp), target, overwrite, values)
     return target
 
 
@@ -186,19 +197,157 @@ class removed_on_failure:
         return False
 
 
-def layout(ds: xr.Dataset, path: Path) -> None:
-    """Create the NetCDF file ``path`` for ``ds`` with its dimensions, attributes, encodings and
-    in-memory variables, leaving the values of its dask variables unwritten (`parts` fills them in
-    place); the file is closed and durable on return."""
-    delayed = ds.to_netcdf(path, engine="netcdf4", encoding=_encoding(ds), compute=False)
-    # xarray keeps the file open for the deferred values; dropping them closes it (its file manager
-    # closes on release) and nothing holds it afterwards
-    del delayed
-    import gc
-
-    gc.collect()
+def layout(ds: xr.Dataset, path: Path | str) -> None:
+    """Create the NetCDF file ``path`` for ``ds``: dimensions, attributes, encodings and in-memory
+    variables, the values of its dask variables unwritten (`store` writes them). Fill mode is off:
+    with it, HDF5 first writes every chunk with the fill value and then the values, twice the bytes
+    (2.85 GB written for a 1.42 GB file, measured). The file is closed and durable on return."""
+    lazy_text = [name for name, var in ds.variables.items() if hasattr(var.data, "dask") and not _numeric(var)]
+    if lazy_text:       # text (a Zarr store's string coordinates): small, and encoded by xarray alone
+        ds = ds.copy(deep=False)
+        for name in lazy_text:
+            ds.variables[name].load()
+    nc = netCDF4.Dataset(path, "w", format="NETCDF4")
+    try:
+        nc.set_fill_off()
+        # xarray's own write minus the values of dask variables: they are registered for a later
+        # store that never runs here
+        ds.dump_to_store(xr.backends.NetCDF4DataStore(nc), encoding=_encoding(ds))
+    finally:
+        nc.close()
     with open(path, "rb+") as fh:
         os.fsync(fh.fileno())
+
+
+class open_values:
+    """The laid-out file, open to write or read values as stored (no masking or scaling), without
+    HDF5's chunk caches: blocks are written (and read back) whole, chunk-aligned, so a cache only
+    copies them once more and holds them (a 3.6e7-point run of eleven fields in chunks: 16.0 s wall,
+    8-9 s of system time and 1.28 GB peak memory with netCDF's default caches, measured).
+
+    Every write and the closing hold one lock (HDF5 is not thread safe), and a write after the
+    closing is refused: after an interrupt the main thread closes the file while a worker thread may
+    still be writing a block (closing under it crashed the process: 3 of 40 runs given SIGHUP).
+    """
+
+    def __init__(self, path: Path | str):
+        self.nc = netCDF4.Dataset(path, "a")
+        self.nc.set_auto_maskandscale(False)
+        for var in self.nc.variables.values():
+            if var.chunking() != "contiguous":
+                var.set_var_chunk_cache(size=0)
+        self.lock = threading.Lock()
+        self.closed = False
+
+    def __getitem__(self, name: str):
+        return self.nc[name]
+
+    def write(self, name: str, index, values) -> None:
+        with self.lock:
+            if self.closed:
+                raise OutputError("the file was closed before this block was written (the run was interrupted)")
+            self.nc[name][index] = values
+
+    def sync(self) -> None:
+        with self.lock:
+            self.nc.sync()
+
+    def close(self) -> None:
+        with self.lock:
+            if not self.closed:
+                self.closed = True
+                self.nc.close()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+        return False
+
+
+def sources(ds: xr.Dataset, encoding: dict, dim: str | None = None, lo: int = 0, hi: int | None = None,
+            first: bool = True) -> list:
+    """(name, dask array of stored values, region in the file) of the numeric dask variables of ``ds``, in
+    name order: whole, or their rows lo:hi along ``dim`` (a part, `parts`), the variables without
+    ``dim`` only with the ``first`` part. The values pass the encoding the file's variable has
+    (`hashing.stored_form`)."""
+    out = []
+    for name in sorted(map(str, ds.variables)):
+        var = ds.variables[name]
+        if not hasattr(var.data, "dask") or not _numeric(var) or (dim is not None and dim not in var.dims
+                                                                   and not first):
+            continue
+        region = tuple(slice(lo, hi) if d == dim else slice(0, n) for d, n in zip(var.dims, var.shape))
+        data = var.data[tuple(slice(r.start, r.stop) for r in region)]
+        data = data.map_blocks(stored_form(name, var, encoding), dtype=var.dtype,
+                               meta=np.empty((0,) * var.ndim, var.dtype))
+        out.append((name, data, region))
+    return out
+
+
+def _numeric(var) -> bool:
+    """Numbers stored as they are computed (text and booleans pass xarray's encoders at layout)."""
+    return var.dtype.kind in "iuf"
+
+
+def blocks(sources: list):
+    """(name, index in the file) of every block of ``sources``: by variable, then in C order."""
+    for name, data, region in sources:
+        starts = [np.concatenate([[0], np.cumsum(c)]).astype(int) + r.start for c, r in zip(data.chunks, region)]
+        for loc in np.ndindex(*data.numblocks):
+            yield name, tuple(slice(int(s[i]), int(s[i + 1])) for s, i in zip(starts, loc))
+
+
+def store(nc, sources: list, scheduler, progress: bool, crcs: bool = False) -> list[int] | None:
+    """Compute the blocks of ``sources`` (`sources`) and write each where it belongs in ``nc``
+    (`open_values`); with ``crcs``, their CRC-32s in the order of `blocks`."""
+    import dask
+    import dask.array as da
+
+    kept: dict | None = {} if crcs else None
+    targets = [_Target(nc, name, kept) for name, _, _ in sources]
+    arrays = [data for _, data, _ in sources]
+    regions = [region for _, _, region in sources]
+    if local(scheduler):
+        # one graph: a field's variables come from one task per block
+        stored = da.store(arrays, targets, regions=regions, lock=False, compute=False)
+        compute(dask.delayed(_done)(stored), progress=progress, scheduler=scheduler)
+    else:       # a cluster computes, this process writes: the sources' values in memory at once
+        for source, target, values in zip(sources, targets, dask.compute(*arrays, scheduler=scheduler)):
+            region = source[2]
+            for _, index in blocks([source]):
+                target[index] = values[tuple(slice(i.start - r.start, i.stop - r.start) for i, r in zip(index, region))]
+    if kept is None:
+        return None
+    return [kept[(name, tuple(s.start for s in index))] for name, index in blocks(sources)]
+
+
+def crc(values) -> int:
+    """CRC-32 of an array's stored bytes (zlib, 6.8 GB/s here against 2.0 for SHA-256)."""
+    values = np.ascontiguousarray(values)
+    return zlib.crc32(values.reshape(-1).view(np.uint8)) if values.size else 0
+
+
+def _done(_):
+    return None
+
+
+class _Target:
+    """A variable of an `open_values` file as a target of `dask.array.store`, keeping the CRC-32 of
+    each block by the block's start when ``crcs`` is a dict (taken outside the file's lock: zlib
+    releases the GIL)."""
+
+    def __init__(self, values: open_values, name: str, crcs: dict | None):
+        self.values, self.name, self.crcs = values, name, crcs
+        self.dtype = values[name].dtype
+
+    def __setitem__(self, index, values):
+        values = np.ascontiguousarray(values, dtype=self.dtype)
+        check = crc(values) if self.crcs is not None else None
+        self.values.write(self.name, index, values)
+        if self.crcs is not None:
+            self.crcs[(self.name, tuple(s.start for s in index))] = check
 
 
 def _flush_soon(path: str):
