@@ -114,15 +114,12 @@ def verify(path: str | Path) -> str:
     return digest
 
 
-def stamp(path: str | Path, values: dict | None = None, digest: str | None = None) -> str:
+def stamp(path: str | Path, values: dict | None = None) -> str:
     """Compute the content hash of a written NetCDF file and store it as a global attribute.
-    ``values`` as for `content_hash`: variables whose written values are still in memory; ``digest``:
-    the hash already computed while the file was filled."""
+    ``values`` as for `content_hash`: variables whose written values are still in memory."""
     import netCDF4
 
-    if digest is not None:
-        pass
-    elif values:
+    if values:
         from .netcdf import read
 
         with read(path, raw=True) as ds:
