@@ -113,16 +113,6 @@ def test_against_power_law_closed_forms(k, rtol):
     assert rel(u, ref) <= max(rtol, 2e-12)
 
 
-def test_centre_pressure_near_homogeneous_probe():
-    """k = 1e-6, r = 0, rtol = 1e-12 on the tree route: against the closed forms, and O(k) from k = 0."""
-    tab, parts = cubic_table()
-    m = dict(MAT, k=1e-6)
-    p = N.pressure_quad(0.0, A, tab, rtol=1e-12, **m)
-    assert rel(p, sum(N.pressure(0.0, A, n=n, A_n=An, **m) for n, An in parts)) <= 1e-12
-    p0 = sum(N.pressure(0.0, A, n=n, A_n=An, **dict(MAT, k=0.0)) for n, An in parts)
-    assert rel(p, p0) < 1e-5
-
-
 # ------------------------------------------------------------- quadpack of the defining integrals
 
 _GX, _GW = roots_legendre(24)
