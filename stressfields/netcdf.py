@@ -189,12 +189,20 @@ class removed_on_failure:
         if kind is None:
             return False
         _remove(self.tmp)
-        parent = self.target.parent if str(self.target.parent) else Path(".")
-        if isinstance(exc, OSError) and not isinstance(exc, OutputError):
-            raise OutputError(f"cannot write {self.target}: {exc.strerror or exc}{_space(parent)}") from exc
-        if isinstance(exc, RuntimeError) and str(exc).startswith("NetCDF:"):   # HDF5's I/O failures
-            raise OutputError(f"cannot write {self.target}: {exc}{_space(parent)}") from exc
+        error = output_error(exc, self.target, self.target.parent if str(self.target.parent) else Path("."))
+        if error is not None:
+            raise error from exc
         return False
+
+
+def output_error(exc: BaseException, target: Path, folder: Path) -> OutputError | None:
+    """The one-line OutputError for an I/O failure while writing ``target`` (naming the free space
+    in ``folder``), or None for anything else (an OutputError already is one)."""
+    if isinstance(exc, OSError) and not isinstance(exc, OutputError):
+        return OutputError(f"cannot write {target}: {exc.strerror or exc}{_space(folder)}")
+    if isinstance(exc, RuntimeError) and str(exc).startswith("NetCDF:"):   # HDF5's I/O failures
+        return OutputError(f"cannot write {target}: {exc}{_space(folder)}")
+    return None
 
 
 def layout(ds: xr.Dataset, path: Path | str) -> None:

@@ -73,14 +73,11 @@ def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool 
         if progress:
             print(f"  hashing {data.stat().st_size / 1e9:.2f} GB", file=sys.stderr)
         netcdf.finish(data, target, overwrite)
-    except OSError as exc:
-        if isinstance(exc, OutputError):
+    except (OSError, RuntimeError) as exc:      # the folder stays: a resume takes it up
+        error = netcdf.output_error(exc, target, folder)
+        if error is None:
             raise
-        raise OutputError(f"cannot write {target}: {exc.strerror or exc}{netcdf._space(folder)}") from exc
-    except RuntimeError as exc:
-        if str(exc).startswith("NetCDF:"):      # the HDF5 layer reports I/O failures this way
-            raise OutputError(f"cannot write {target}: {exc}{netcdf._space(folder)}") from exc
-        raise
+        raise error from exc
     shutil.rmtree(folder)
     return target
 
