@@ -620,15 +620,24 @@ _KERNELS = {
 def _blocks_tau(profile, r, lo, hi, ords: Orders, kinds):
     """``tau_integrals`` by the block route: blocks of [r cosh lo, r cosh hi] away from u = r, the
     two ends by ``_tau_exact``."""
+    return _by_blocks(profile, r, lo, hi, ords, kinds, +1, lambda t: r * np.cosh(t),
+                      lambda u: arccosh_ratio(np.maximum(u, r), r), _tau_exact)
+
+
+def _by_blocks(profile, r, lo, hi, ords: Orders, kinds, side, radius, parameter, exact):
+    """An integral over the parameter t in [lo, hi] whose radius u = ``radius(t)`` lies on one
+    ``side`` of r: the tree's blocks away from u = r by their moments, the parameter ranges before
+    the first and after the last block (``parameter`` maps a radius back) by the knot-resolving
+    rule ``exact``."""
     tree = _tree(profile, _block_order(ords))
-    pt, flat, level, ua, ub, has = tree.decompose(r, r * np.cosh(lo), r * np.cosh(hi), +1)
-    ta = np.where(has, np.clip(arccosh_ratio(np.maximum(ua, r), r), lo, hi), hi)
-    tb = np.where(has, np.clip(arccosh_ratio(np.maximum(ub, r), r), ta, hi), hi)
-    out = _tau_exact(profile, r, lo, ta, ords, kinds)
+    pt, flat, level, ua, ub, has = tree.decompose(r, radius(lo), radius(hi), side)
+    ta = np.where(has, np.clip(parameter(ua), lo, hi), hi)
+    tb = np.where(has, np.clip(parameter(ub), ta, hi), hi)
+    out = exact(profile, r, lo, ta, ords, kinds)
     ih = np.flatnonzero(has & (tb < hi))
     if ih.size:
-        end = _tau_exact(profile, r[ih], tb[ih], hi[ih], ords, kinds)
-        for k in kinds:
+        end = exact(profile, r[ih], tb[ih], hi[ih], ords, kinds)
+        for k in out:
             out[k][ih] += end[k]
     blocks = tree.sums(pt, flat, level, r, r.size, [(k,) + _KERNELS[k] for k in kinds])
     for k in kinds:
@@ -651,21 +660,7 @@ def _blocks_sin(profile, r, th_lo, th_hi, ords: Orders, kinds):
     """The u = r sin t integrals (P0, P2 of ``theta_moments``, D of ``pressure_gradient_D``, F of
     ``pressure_gradient_far``) by the block route: blocks of [r sin th_lo, r sin th_hi] away from
     u = r, the two ends by the knot-resolving rules."""
-    tree = _tree(profile, _block_order(ords))
-    pt, flat, level, ua, ub, has = tree.decompose(r, r * np.sin(th_lo), r * np.sin(th_hi), -1)
-
     def angle(u):
         return np.arctan2(u, sqrt_diff(r, np.minimum(u, r)))
 
-    ta = np.where(has, np.clip(angle(ua), th_lo, th_hi), th_hi)
-    tb = np.where(has, np.clip(angle(ub), ta, th_hi), th_hi)
-    out = _sin_exact(profile, r, th_lo, ta, ords, kinds)
-    ih = np.flatnonzero(has & (tb < th_hi))
-    if ih.size:
-        end = _sin_exact(profile, r[ih], tb[ih], th_hi[ih], ords, kinds)
-        for k in out:
-            out[k][ih] += end[k]
-    blocks = tree.sums(pt, flat, level, r, r.size, [(k,) + _KERNELS[k] for k in kinds])
-    for k in kinds:
-        out[k] += blocks[k]
-    return out
+    return _by_blocks(profile, r, th_lo, th_hi, ords, kinds, -1, lambda t: r * np.sin(t), angle, _sin_exact)
