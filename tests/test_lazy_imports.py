@@ -136,3 +136,17 @@ def test_a_local_run_does_not_import_dask_distributed(tmp_path, scheduler):
 
     digest, stored = file_hash(tmp_path / "o.nc")
     assert digest == stored
+
+
+def test_a_closed_form_run_loads_no_spline_or_optimizer(tmp_path):
+    """scipy.interpolate (and the scipy.optimize it imports) serve tabulated profiles and peak
+    searches only: a cone's surface fields load neither (their import is ~0.1 s of every run)."""
+    recipe = tmp_path / "r.toml"
+    recipe.write_text('scenario = "conical"\n[parameters]\nmu = 0.3\nux0 = 0.25\n'
+                      'x = { start = -1.5, stop = 1.5, num = 11 }\ny = { start = -1.5, stop = 1.5, num = 9 }\n'
+                      '[output]\nvariables = ["sigma_xx", "von_mises", "sigma_1", "dpdz"]\n')
+    code = ("import sys; from stressfields.cli import main\n"
+            f"code = main(['run', {str(recipe)!r}, '-o', {str(tmp_path / 'o.nc')!r}, '-q'])\n"
+            "print(code, sorted(m for m in ('scipy.interpolate', 'scipy.optimize') if m in sys.modules))")
+    done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120)
+    assert done.stdout.strip() == "0 []", done.stderr

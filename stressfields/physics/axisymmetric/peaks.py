@@ -41,7 +41,6 @@ quadrature under tangential load) on one core.
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import minimize
 
 from .fields import fields
 from .profiles import Profile
@@ -135,6 +134,8 @@ def _refine(f, xs, zs, i, j, lo, scale):
     simplex = np.array([[x0, z0], [min(x0 + dx, _X_MAX), z0], [x0, min(z0 + dz, _Z_MAX)]])
     if x0 + dx > _X_MAX:
         simplex[1, 0] = x0 - dx
+    from scipy.optimize import minimize     # here: its import (0.1 s) only when peaks are asked for
+
     res = minimize(lambda v: -float(f(v[0], v[1])) / scale, simplex[0], method="Nelder-Mead",
                    bounds=[(lo, _X_MAX), (0.0, _Z_MAX)],
                    options=dict(initial_simplex=simplex, xatol=_XATOL, fatol=_FATOL, maxiter=4000, maxfev=8000))

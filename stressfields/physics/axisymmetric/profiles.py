@@ -14,7 +14,6 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 from scipy.special import gammaln
 
 from ..roots import bisect
@@ -442,6 +441,8 @@ class Tabulated(Profile):
             raise ValueError("tabulated profile: f is constant (a flat punch); use flat_punch()")
         object.__setattr__(self, "r", tuple(r.tolist()))
         object.__setattr__(self, "f", tuple(f.tolist()))
+        from scipy.interpolate import CubicSpline   # here: its import (0.1 s) only for tabulated profiles
+
         spline = CubicSpline(r, f - f[0])
         d, c, b = spline.c[0], spline.c[1], spline.c[2]      # f' = b + 2c (r-rj) + 3d (r-rj)^2
         rj = r[:-1]

@@ -18,7 +18,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
 from scipy.special import beta as _B, betainc, betaincc
 
 from .. import quadrature
@@ -122,6 +121,8 @@ class Tabulated:
         bc = "not-a-knot" if slope_at_0 is None else ((1, float(slope_at_0)), "not-a-knot")
         self.r_max = float(r[-1])
         self.breaks = r[1:-1].copy()
+        from scipy.interpolate import CubicSpline   # here: its import (0.1 s) only for tabulated profiles
+
         self._s = CubicSpline(r, f - f[0], bc_type=bc)
         self._ds = self._s.derivative(1)
         self._d2s = self._s.derivative(2)
