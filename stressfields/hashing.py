@@ -1,24 +1,25 @@
 """Content hash of a dataset: what the file says, not how HDF5 happened to lay it out.
 
 Lazy NetCDF writes are not byte-reproducible (HDF5 places chunks in arrival order), so the
-reproducibility contract is a SHA-256 over, for every variable in name order: its name, dims,
-dtype, shape, little-endian values, and its attributes with their stored types (an int8
-``flag_values`` is not an int64 one); plus the global attributes except `history` (a timestamp) and
-the hash itself. Strings hash alike whatever array type holds them (NetCDF gives Python objects,
-Zarr NumPy's StringDType). Same recipe, same environment: same hash, whatever the chunking or the
-scheduler.
+reproducibility contract is a SHA-256 over the global attributes except `history` (a timestamp) and
+the hash itself, then, for every variable in name order: its name, dims, dtype, shape and its
+attributes with their stored types (an int8 ``flag_values`` is not an int64 one), followed by the
+SHA-256 digest of its little-endian values in C order. Strings hash alike whatever array type holds
+them (NetCDF gives Python objects, Zarr NumPy's StringDType). Same recipe, same environment: same
+hash, whatever the chunking or the scheduler.
 
-A run hashes the values it writes from memory, as they were computed (`Keeper`): the same bytes in
-the same order as reading the file back, without the read. Reading back (`file_hash`, `verify`)
-remains the check of a file: `export`, `stressfields hash` and runs in parts (`parts`) use it.
+A digest per variable lets the values of two variables be read back and hashed at once, one per
+core (`content_hash`): SHA-256 itself is sequential, and it is what a run does last (1e7 points of
+eleven fields, 0.9 GB: 0.33 s instead of 0.50 as one stream, medians of 3). The values are read
+from the written file, so the hash is of what the file holds.
 
-Files written before attribute types were hashed carry the hash without them (``legacy``);
-`file_hash` accepts that one when the stored hash is it, so they still verify.
+Two earlier forms still verify (`file_hash` tries them when the current one differs): one SHA-256
+stream over every variable's values (``FORMS["stream"]``), and before that without attribute types
+(``FORMS["untyped"]``).
 """
 from __future__ import annotations
 
 import hashlib
-import os
 import json
 from pathlib import Path
 
@@ -33,39 +34,57 @@ _SLICE_BYTES = 64 * 2 ** 20
 _READ_BYTES = 8 * 2 ** 20
 
 
-def content_hash(ds: xr.Dataset, legacy: bool = False, values: dict | None = None) -> str:
-    """The content hash of ``ds`` (a raw dataset, as `read(path, raw=True)` gives it). ``values``
-    optionally maps a numeric variable's name to a callable giving its stored values as arrays whose
-    C-order bytes, one after the other, are the variable's C-order bytes (`Keeper.values`): those
-    are hashed from memory instead of read from ``ds``. SHA-256 sees one byte stream either way, so
-    the digest does not depend on where the bytes came from or how they were cut."""
+#: the forms of the content hash, newest first: (attributes with their types, values by per-variable
+#: digest); `file_hash` accepts a stored hash of any of them
+FORMS = {"current": (True, True), "stream": (True, False), "untyped": (False, False)}
+
+
+def content_hash(ds: xr.Dataset, form: str = "current") -> str:
+    """The content hash of ``ds`` (a raw dataset, as `read(path, raw=True)` gives it) in ``form``
+    (`FORMS`); per-variable digests are read two variables at a time (`_read_digests`)."""
+    typed, nested = FORMS[form]
+    attr = _typed if typed else _plain
     h = hashlib.sha256()
-    attr = _plain if legacy else _typed
     attrs = {k: attr(v) for k, v in sorted(ds.attrs.items()) if k not in _SKIP_GLOBAL}
     h.update(json.dumps(attrs, sort_keys=True).encode())
-    for item in _prefetched(_stream(ds, legacy, values or {})):
-        h.update(item)
+    names = sorted(map(str, ds.variables))
+    if nested:
+        digests = _read_digests(ds, names)
+    for name in names:
+        var = ds.variables[name]
+        dtype = str(var.dtype) if not typed or var.dtype.kind not in "OUT" else "string"
+        head = {"name": name, "dims": list(var.dims), "dtype": dtype, "shape": list(var.shape),
+                "attrs": {k: attr(v) for k, v in sorted(var.attrs.items())}}
+        h.update(json.dumps(head, sort_keys=True).encode())
+        if nested:
+            h.update(digests[name])
+        else:
+            for piece in _prefetched(_value_readers(var)):
+                h.update(piece)
     return h.hexdigest()
 
 
-def _stream(ds: xr.Dataset, legacy: bool = False, values: dict | None = None):
-    """What is hashed, in order: per variable (by name) a JSON head, then a reader per value slab."""
-    attr = _plain if legacy else _typed
-    values = values or {}
-    for name in sorted(map(str, ds.variables)):
-        var = ds.variables[name]
-        dtype = str(var.dtype) if legacy or var.dtype.kind not in "OUT" else "string"
-        head = {"name": name, "dims": list(var.dims), "dtype": dtype, "shape": list(var.shape),
-                "attrs": {k: attr(v) for k, v in sorted(var.attrs.items())}}
-        yield lambda head=head: json.dumps(head, sort_keys=True).encode()
-        if name in values:
-            for piece in values[name]():
-                if piece.dtype != var.dtype:
-                    raise ValueError(f"{name}: kept values are {piece.dtype}, stored {var.dtype}")
-                yield lambda piece=piece: _bytes(piece)
-            continue
-        for index in slabs(var.shape, var.dtype.itemsize, _READ_BYTES):
-            yield lambda var=var, index=index: _bytes(np.asarray(var[index].values))
+def _value_readers(var):
+    """A reader per slab of ``var``'s values, in C order."""
+    for index in slabs(var.shape, var.dtype.itemsize, _READ_BYTES):
+        yield lambda index=index: _bytes(np.asarray(var[index].values))
+
+
+def _read_digests(ds: xr.Dataset, names: list[str]) -> dict[str, bytes]:
+    """The SHA-256 digests of the values of ``names``, read from ``ds``: largest first, two variables
+    at a time (reading and hashing release the GIL; xarray serialises the reads of one NetCDF file)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    def digest(name):
+        h = hashlib.sha256()
+        for reader in _value_readers(ds.variables[name]):
+            h.update(reader())
+        return name, h.digest()
+    order = sorted(names, key=lambda n: -ds.variables[n].size)
+    if len(order) <= 1:
+        return dict(map(digest, order))
+    with ThreadPoolExecutor(2) as pool:
+        return dict(pool.map(digest, order))
 
 
 def _prefetched(readers):
@@ -85,13 +104,16 @@ def _prefetched(readers):
 
 
 def file_hash(path: str | Path) -> tuple[str, str | None]:
-    """(recomputed hash, hash stored in the file or None), for any format of `writers.FORMATS`."""
+    """(recomputed hash, hash stored in the file or None), for any format of `writers.FORMATS`. A file
+    whose stored hash is of an earlier form (`FORMS`) and matches it gives that one."""
     from .writers import format_for
 
     with format_for(path).read(path, raw=True) as ds:
         digest, stored = content_hash(ds), ds.attrs.get(ATTR)
-        if stored is not None and stored != digest and content_hash(ds, legacy=True) == stored:
-            return stored, stored       # written before attribute types were hashed, and intact
+        if stored is not None and stored != digest:
+            for form in list(FORMS)[1:]:
+                if content_hash(ds, form) == stored:
+                    return stored, stored       # written in an earlier form, and intact
         return digest, stored
 
 
@@ -114,18 +136,11 @@ def verify(path: str | Path) -> str:
     return digest
 
 
-def stamp(path: str | Path, values: dict | None = None) -> str:
-    """Compute the content hash of a written NetCDF file and store it as a global attribute.
-    ``values`` as for `content_hash`: variables whose written values are still in memory."""
+def stamp(path: str | Path) -> str:
+    """Compute the content hash of a written NetCDF file and store it as a global attribute."""
     import netCDF4
 
-    if values:
-        from .netcdf import read
-
-        with read(path, raw=True) as ds:
-            digest = content_hash(ds, values=values)
-    else:
-        digest, _ = file_hash(path)
+    digest, _ = file_hash(path)
     with netCDF4.Dataset(path, "a") as nc:
         nc.setncattr(ATTR, digest)
     return digest
@@ -168,102 +183,3 @@ def _plain(value):
     if isinstance(value, np.generic):
         return value.item()
     return value
-
-
-#: bytes of computed values kept in memory to hash them without reading the file back (and at most a
-#: quarter of the memory available when the run starts). Small on purpose: reading back from the page
-#: cache overlaps SHA-256 (`_prefetched`), so it costs little, while holding every block until the end
-#: costs CPU that grows with the bytes held. Measured (cone, eleven fields, sf.write, CPU s, memory vs
-#: read back): 1e6 points (88 MB) 0.65 vs 0.63; 4e6 (350 MB) 2.77 vs 2.53; 1e7 (0.9 GB) 7.68 vs 6.64.
-KEEP_BYTES = 128 * 2 ** 20
-
-
-def keep_budget() -> int:
-    try:
-        available = os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (OSError, ValueError, AttributeError):
-        available = 4 * KEEP_BYTES
-    return min(KEEP_BYTES, available // 4)
-
-
-class Keeper:
-    """Keeps the blocks of a dataset's dask variables as they are computed and written, so that the
-    written file is hashed from memory (`content_hash(..., values=keeper.values())`) instead of read
-    back. The hash is defined per variable in name order, while a task computes one block of every
-    variable of its group, so the blocks wait in memory until the whole dataset is written: variables
-    are kept, in name order, while their bytes fit ``budget``; the others are read back as before.
-
-    A block is kept as it is stored: after xarray's CF encoding of its variable (``encoding``, e.g. a
-    ``_FillValue`` replacing NaN), the very function the writers apply."""
-
-    def __init__(self, budget: int | None = None):
-        self.budget = keep_budget() if budget is None else budget
-        self.blocks: dict[str, dict] = {}
-        self.chunks: dict[str, tuple] = {}
-
-    def wrap(self, ds: xr.Dataset, encoding: dict | None = None) -> xr.Dataset:
-        """``ds`` with a pass-through step after each block of the kept variables."""
-        out, used = ds.copy(deep=False), 0
-        for name in sorted(map(str, ds.variables)):
-            var = ds.variables[name]
-            if not hasattr(var.data, "map_blocks") or not var.ndim or var.dtype.kind not in "biuf":
-                continue
-            if used + var.nbytes > self.budget:
-                continue
-            used += var.nbytes
-            self.blocks[name], self.chunks[name] = {}, var.chunks
-            keep = self._keeper(name, stored_form(name, var, encoding))
-            out.variables[name].data = var.data.map_blocks(keep, dtype=var.dtype, meta=np.empty((0,) * var.ndim,
-                                                                                               var.dtype))
-        return out
-
-    def _keeper(self, name, stored):
-        store = self.blocks[name]
-
-        def keep(block, block_info=None):
-            if block_info is None:
-                return block
-            store[tuple(block_info[None]["chunk-location"])] = stored(block)
-            return block
-        return keep
-
-    def values(self) -> dict:
-        """Per kept variable whose every block arrived: a callable giving its values in C order."""
-        return {name: (lambda name=name: self._pieces(name)) for name, blocks in self.blocks.items()
-                if len(blocks) == int(np.prod([len(c) for c in self.chunks[name]]))}
-
-    def _pieces(self, name: str):
-        """The blocks in an order whose bytes are the variable's C-order bytes: the blocks themselves
-        when only single-index blocks precede a split dimension, else bands along the first dimension
-        assembled from their blocks. Each is released once handed out."""
-        chunks, blocks = self.chunks[name], self.blocks.pop(name)
-        grid = [len(c) for c in chunks]
-        if all(max(chunks[i]) == 1 for j in range(len(grid)) if grid[j] > 1 for i in range(j)):
-            for loc in np.ndindex(*grid):
-                yield blocks.pop(loc)
-            return
-        shape = tuple(sum(c) for c in chunks)
-        starts = [np.concatenate([[0], np.cumsum(c)]).astype(int) for c in chunks]
-        for i0 in range(grid[0]):
-            first = blocks[(i0,) + (0,) * (len(grid) - 1)]
-            band = np.empty((chunks[0][i0],) + shape[1:], dtype=first.dtype)
-            for rest in np.ndindex(*grid[1:]):
-                index = (slice(None),) + tuple(slice(s[i], s[i + 1]) for s, i in zip(starts[1:], rest))
-                band[index] = blocks.pop((i0,) + rest)
-            yield band
-
-
-def stored_form(name: str, var: xr.Variable, encoding: dict | None = None):
-    """A function giving a block of ``var`` as the writers store it: after xarray's CF encoding of the
-    variable (``encoding``: the writers' per-variable encodings)."""
-    enc = {k: v for k, v in (encoding or {}).get(name, {}).items() if k == "_FillValue"}
-    if enc.get("_FillValue") is None:
-        # without a fill value a block is stored as it is, and the encoder is skipped: it costs
-        # ~0.13 s per 1e6-value block (measured), for an unchanged copy
-        return lambda block: block
-    dims, attrs = var.dims, dict(var.attrs)
-
-    def stored(block):
-        # the one encoding that changes a stored number here: +-inf/NaN -> the fill value
-        return np.asarray(xr.conventions.encode_cf_variable(xr.Variable(dims, block, attrs, enc), name=name).values)
-    return stored

@@ -20,8 +20,8 @@ import numpy as np
 import xarray as xr
 
 from .errors import OutputError
-from .hashing import ATTR, Keeper, content_hash
-from .netcdf import clean_stale, compute, local, temporary
+from .hashing import ATTR, content_hash
+from .netcdf import clean_stale, compute, temporary
 
 
 def _zarr():
@@ -42,14 +42,12 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     ds = ds.assign_attrs({ORDER_ATTR: [str(name) for name in ds.variables]})
     try:
         encoding = _encoding(ds)
-        # the values are hashed from memory as written (`hashing.Keeper`), read back only past its budget
-        keeper = Keeper() if local(scheduler) else None
         with quiet():
-            delayed = (keeper.wrap(ds, encoding) if keeper else ds).to_zarr(
+            delayed = ds.to_zarr(
                 partial, mode="w", encoding=encoding, compute=False, consolidated=True)
             compute(delayed, progress=progress, scheduler=scheduler)
             with read(partial, raw=True) as written:
-                digest = content_hash(written, values=keeper.values() if keeper else None)
+                digest = content_hash(written)
             group = zarr.open_group(partial, mode="r+")
             group.attrs[ATTR] = digest
             zarr.consolidate_metadata(partial)

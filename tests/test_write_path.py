@@ -1,5 +1,6 @@
-"""The write path: values hashed from memory as they are written (the same digest as reading the file
-back), default chunking that keeps both cores busy, parts written once into the output and hashed once."""
+"""The write path: the content hash by per-variable digests (earlier forms still verify), default
+chunking that keeps both cores busy, parts written once into the output and hashed once."""
+import hashlib
 from pathlib import Path
 
 import numpy as np
@@ -8,91 +9,77 @@ import pytest
 import stressfields as sf
 from stressfields import hashing
 from stressfields.build import default_chunks
-from stressfields.hashing import Keeper, file_hash
+from stressfields.hashing import file_hash
 from conftest import kill_after_two_parts
 
 CONE = {"scenario": "conical",
         "parameters": {"nu": 0.3, "ux0": 0.25, "mu": [0.0, 0.3, 0.4], "y": [0.0, 0.3, 0.6],
                        "x": {"start": -1.5, "stop": 1.5, "num": 31}}}
-HERTZ = {"scenario": "parabolic",
-         "parameters": {"mu": [0.2, 0.3], "ux0": 0.25, "y": {"start": -1.5, "stop": 1.5, "num": 9},
-                        "x": {"start": -1.5, "stop": 1.5, "num": 13}},
-         "output": {"variables": ["von_mises", "sigma_xx", "dpdz"]}}
 
 
-@pytest.fixture
-def kept(monkeypatch):
-    """The names each write hashed from memory."""
-    seen: list[set] = []
-    values = Keeper.values
+@pytest.mark.parametrize("shape,chunks", [((7,), (3,)), ((4, 5), (1, 5)), ((4, 5), (4, 2)), ((3, 4, 5), (2, 3, 4)),
+                                          ((2, 3, 4, 5), (1, 3, 2, 5))])
+@pytest.mark.parametrize("limit", [8, 24, 10 ** 9])
+def test_a_variables_digest_is_the_sha256_of_its_c_order_little_endian_bytes(shape, chunks, limit, monkeypatch):
+    """Against hashlib on the array's own bytes, whatever the slabs it is read in."""
+    import dask.array as da
+    import xarray as xr
 
-    def spy(self):
-        out = values(self)
-        seen.append(set(out))
-        return out
-    monkeypatch.setattr(Keeper, "values", spy)
-    return seen
-
-
-def _dask_numeric(ds):
-    return {n for n, v in ds.variables.items() if hasattr(v.data, "map_blocks") and v.ndim and v.dtype.kind in "biuf"}
+    monkeypatch.setattr(hashing, "_READ_BYTES", limit)
+    a = np.random.default_rng(1).standard_normal(shape).astype(">f8")     # big-endian: hashed little
+    ds = xr.Dataset({"v": (tuple(f"d{i}" for i in range(len(shape))), da.from_array(a, chunks=chunks)),
+                     "w": ("e", np.arange(3, dtype="<i4"))})
+    assert hashing._read_digests(ds, ["v", "w"]) == {"v": hashlib.sha256(a.astype("<f8").tobytes()).digest(),
+                                                     "w": hashlib.sha256(np.arange(3, dtype="<i4").tobytes()).digest()}
 
 
-@pytest.mark.parametrize("recipe", [CONE, HERTZ], ids=["cone", "hertz"])
-@pytest.mark.parametrize("chunks", [None, {"x": 7, "y": 1}, {"mu": 1}, {"y": 2, "x": 10}],
-                         ids=["default", "x7y1", "mu1", "y2x10"])
-@pytest.mark.parametrize("suffix", [".nc", ".zarr"])
-@pytest.mark.parametrize("scheduler", [None, "synchronous"], ids=["threads", "sync"])
-def test_hash_from_memory_equals_the_read_back_hash(tmp_path, monkeypatch, kept, recipe, chunks, suffix,
-                                                    scheduler):
-    ds = sf.generate(recipe, chunks=chunks)
-    target = sf.write(ds, tmp_path / f"a{suffix}", scheduler=scheduler)
-    assert kept[-1] == _dask_numeric(sf.writers.prepare(ds)) != set()     # every field came from memory
-    digest, stored = file_hash(target)                                      # read back from the file
-    assert digest == stored
-    # the other route: nothing kept, every value read back from the written file before stamping
-    monkeypatch.setattr(hashing, "keep_budget", lambda: 0)
-    again = sf.write(ds, tmp_path / f"b{suffix}", scheduler=scheduler)
-    assert kept[-1] == set() and file_hash(again) == (digest, digest)
+def test_the_hash_covers_the_heads_and_digests_in_name_order():
+    """The current form against its definition written out with hashlib: the global attributes, then
+    per variable (by name) its head and the digest of its values."""
+    import json
+
+    import xarray as xr
+
+    ds = xr.Dataset({"b": ("x", np.array([1.0, 2.0]), {"units": "Pa", "k": np.int8(3)}),
+                     "a": ("x", np.array([3, 4], dtype=np.int16))}, attrs={"title": "t", "history": "now"})
+    h = hashlib.sha256(json.dumps({"title": "t"}).encode())
+    heads = (("a", "int16", {}), ("b", "float64", {"k": {"dtype": "int8", "value": 3}, "units": "Pa"}))
+    for name, dtype, attrs in heads:
+        h.update(json.dumps({"name": name, "dims": ["x"], "dtype": dtype, "shape": [2], "attrs": attrs},
+                            sort_keys=True).encode())
+        h.update(hashlib.sha256(ds[name].values.astype(ds[name].dtype.newbyteorder("<")).tobytes()).digest())
+    assert hashing.content_hash(ds) == h.hexdigest()
+
+
+def test_earlier_forms_of_the_content_hash_still_verify(tmp_path):
+    """A file that stores its hash in an earlier form (one stream over all values; before that without
+    attribute types) verifies, and a changed value is still caught."""
+    import netCDF4
+
+    from stressfields.netcdf import read
+
+    path = sf.write(sf.generate(CONE), tmp_path / "a.nc")
+    with read(path, raw=True) as ds:
+        forms = {form: hashing.content_hash(ds, form) for form in hashing.FORMS}
+    assert len(set(forms.values())) == 3
+    for form, digest in forms.items():
+        with netCDF4.Dataset(path, "a") as nc:
+            nc.setncattr(hashing.ATTR, digest)
+        assert file_hash(path) == (digest, digest) and hashing.verify(path) == digest, form
+    with netCDF4.Dataset(path, "a") as nc:
+        nc["sigma_xx"][0, 0, 0] = nc["sigma_xx"][0, 0, 0] + 1.0
+    with pytest.raises(sf.errors.OutputError, match="damaged"):
+        hashing.verify(path)
 
 
 @pytest.mark.parametrize("options", [{"nonfinite": "fill"}, {"dtype": "float32", "nonfinite": "nan"},
                                      {"compression": 4}])
 @pytest.mark.parametrize("suffix", [".nc", ".zarr"])
-def test_hash_from_memory_sees_the_stored_encoding(tmp_path, kept, options, suffix):
-    """Values are hashed as stored: +-inf and NaN as the fill value, float32, compressed alike."""
+def test_the_stored_hash_is_of_the_stored_values(tmp_path, options, suffix):
+    """+-inf and NaN as the fill value, float32, compressed: the hash stored is the hash read back."""
     ds = sf.generate({**CONE, "parameters": {**CONE["parameters"], "x": [-1.0, 0.0, 0.5, 1.0, 2.0]}})
-    target = sf.write(ds, tmp_path / f"a{suffix}", **options)
-    assert kept[-1]
-    digest, stored = file_hash(target)
+    digest, stored = file_hash(sf.write(ds, tmp_path / f"a{suffix}", **options))
     assert digest == stored
-
-
-def test_a_budget_keeps_some_variables_and_reads_the_rest_back(tmp_path, monkeypatch, kept):
-    ds = sf.generate(CONE, chunks={"mu": 1})
-    whole = file_hash(sf.write(ds, tmp_path / "whole.nc"))
-    one = 3 * 3 * 31 * 8                              # bytes of one float field
-    monkeypatch.setattr(hashing, "keep_budget", lambda: 2 * one + 10)
-    part = sf.write(ds, tmp_path / "part.nc")
-    assert 1 <= len(kept[-1]) < len(kept[0])          # some from memory, the others read back
-    assert file_hash(part) == whole
-
-
-@pytest.mark.parametrize("shape,chunks", [((7,), (3,)), ((4, 5), (1, 5)), ((4, 5), (2, 5)), ((4, 5), (4, 2)),
-                                          ((3, 4, 5), (1, 1, 2)), ((3, 4, 5), (2, 3, 4)), ((3, 4, 5), (3, 4, 5)),
-                                          ((2, 3, 4, 5), (1, 3, 2, 5))])
-def test_kept_blocks_come_out_in_c_order(shape, chunks):
-    """Against the array's own C-order bytes: blocks in grid order where that is C order, else bands."""
-    import dask.array as da
-    import xarray as xr
-
-    a = np.random.default_rng(1).standard_normal(shape)
-    ds = xr.Dataset({"v": (tuple(f"d{i}" for i in range(len(shape))), da.from_array(a, chunks=chunks))})
-    keeper = Keeper(budget=10 ** 9)
-    keeper.wrap(ds).compute(scheduler="threads")
-    pieces = list(keeper.values()["v"]())
-    assert b"".join(p.tobytes() for p in pieces) == a.tobytes()
-    assert keeper.blocks == {}            # released as handed out
 
 
 @pytest.mark.parametrize("sizes", [{"x": 200_000}, {"y": 447, "x": 448}, {"y": 1000, "x": 1000},
