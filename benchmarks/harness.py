@@ -478,6 +478,7 @@ def _whole_process(cfg: Config) -> dict:
     out["hertz_mindlin_512_first_call_s"] = process.first_call_hertz_mindlin_512()
     out["hertz_mindlin_512_first_run_s"] = process.first_run_hertz_mindlin_512()
     out.update(process.machine_limits())
+    out["kernels_alone_cpu_s_per_point"] = process.kernels_alone()
     return out
 
 
@@ -728,4 +729,17 @@ def _process_lines(tp: dict) -> list[str]:
                  if "peer_512_first_s" in tp else ""),
               f"- This machine: SHA-256 {tp['sha256_bytes_per_s'] / 1e9:.2f} GB/s, disk write (fsync'd) "
               f"{tp['disk_bytes_per_s'] / 1e9:.2f} GB/s."]
+    if "kernels_alone_cpu_s_per_point" in tp:
+        # the per-core cost a point cannot go below with these kernels: computing its eleven values,
+        # writing their 88 bytes at the disk rate and hashing them at the SHA-256 rate
+        kernel = 1e9 * tp["kernels_alone_cpu_s_per_point"]
+        write, sha = 88e9 / tp["disk_bytes_per_s"], 88e9 / tp["sha256_bytes_per_s"]
+        floor = kernel + write + sha
+        big = [size for size in runs if float(size) >= 1e7 and f"process_{size}_all_pipeline_cpu_s" in tp]
+        per_point = {size: 1e9 * tp[f"process_{size}_all_pipeline_cpu_s"] / float(size) for size in big}
+        shares = ", ".join(f"{float(size):.0e} points {floor / cpu:.0%}" for size, cpu in per_point.items())
+        lines.append(f"- Per core and point, eleven fields: the kernels alone {kernel:.0f} ns (one thread, nothing "
+                     f"written), writing 88 bytes at the disk rate {write:.0f} ns, hashing them {sha:.0f} ns: "
+                     f"{floor:.0f} ns, the floor of a whole run with these kernels; the share of it a whole run "
+                     f"reaches (floor / CPU per point): {shares or 'no run of 1e7 points or more'}.")
     return lines

@@ -168,6 +168,35 @@ def first_run_hertz_mindlin_512() -> float:
                                  for i in range(3))
 
 
+def kernels_alone(n: int = 1000, repeats: int = 5) -> float:
+    """CPU seconds per point of the hand loop's kernels without any writing, in this process (one
+    thread): the eleven fields of the cone case on an n x n grid, median of ``repeats``."""
+    import numpy as np
+
+    from stressfields.physics import axisymmetric as ax
+    from stressfields.physics.invariants import principal_stresses, von_mises
+
+    prof = ax.cone(1.0)
+    c = ax.stick_radius(1.0, 0.3, 0.4, 0.25, prof)
+    pm = float(ax.mean_pressure(1.0, prof))
+    xs = np.linspace(-1.5, 1.5, n)
+    X, Y = xs[None, :], xs[:, None]
+
+    def once():
+        t = ax.surface_stress(X, Y, 1.0, c, 0.3, 0.4, prof)
+        comps = [t[k] / pm for k in ("xx", "yy", "zz", "xy", "xz", "yz")]
+        von_mises(*comps)
+        principal_stresses(*comps)
+        ax.surface_dpdz(X, Y, 1.0, c, 0.3, 0.4, prof)
+    once()
+    times = []
+    for _ in range(repeats):
+        start = time.process_time()
+        once()
+        times.append(time.process_time() - start)
+    return statistics.median(times) / (n * n)
+
+
 def machine_limits(megabytes: int = 512) -> dict:
     """This machine's disk write rate (fsync'd) and SHA-256 rate, bytes per second."""
     import hashlib

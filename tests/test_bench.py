@@ -73,3 +73,18 @@ def test_the_bench_command_loads_the_harness():
 
     harness = bench_harness()
     assert harness.QUICK.points < harness.FULL.points and callable(harness.run)
+
+
+def test_the_whole_process_section_reports_the_floor_and_its_share():
+    """The report's arithmetic on made-up figures: floor = kernels + 88 bytes at the disk rate + 88
+    bytes through SHA-256, and its share of the CPU per point of the 1e7-point run."""
+    tp = {"process_1e+07_all_pipeline_s": 4.0, "process_1e+07_all_pipeline_cpu_s": 5.0,
+          "process_1e+07_all_hand_s": 3.0, "process_1e+07_all_hand_cpu_s": 3.0,
+          "process_1e+07_all_ratio_wall": 1.3, "process_1e+07_all_ratio_cpu": 1.6,
+          "fixed_describe_s": 0.1, "fixed_import_s": 0.02, "fixed_run_1e4_s": 1.0, "fixed_bare_python_s": 0.02,
+          "fixed_dependencies_s": 0.6, "hertz_mindlin_512_first_call_s": 0.8, "hertz_mindlin_512_first_run_s": 1.2,
+          "sha256_bytes_per_s": 2.2e9, "disk_bytes_per_s": 1.76e9, "kernels_alone_cpu_s_per_point": 200e-9}
+    text = "\n".join(bench._process_lines(tp))
+    # 200 + 50 + 40 = 290 ns against 500 ns per point
+    assert "the kernels alone 200 ns" in text and "at the disk rate 50 ns, hashing them 40 ns: 290 ns" in text
+    assert "1e+07 points 58%" in text
