@@ -22,8 +22,10 @@ from . import cf
 from .recipe import POINT, Recipe, RecipeError, chunk_problems
 from .scenarios.base import ARRAY
 
-#: points per chunk: the measured sweet spot of threaded dask on this kind of machine (~8 MB)
-TARGET_CHUNK_POINTS = 1_000_000
+#: points per chunk (~4 MB a float field): 1e7 points of eleven fields in 5e5-point chunks took
+#: 3.66-3.75 s against 3.74-3.91 s in 1e6-point ones (system time 0.70-0.87 s against 1.15-1.29 s:
+#: the kernels' temporaries; three runs each), 4.00-4.17 s in 2.5e5-point ones, 4.3-5.5 s in 6e4
+TARGET_CHUNK_POINTS = 500_000
 #: a sweep of at least this many points gets at least MIN_TASKS chunks where it can, so that each of
 #: two cores has work and a second task to take while the first one's block is being written
 PARALLEL_ABOVE = 200_000
@@ -93,12 +95,12 @@ def check_chunks(sizes: dict[str, int], requested: dict[str, int], chunking: dic
 
 
 def default_chunks(sizes: dict[str, int], requested: dict[str, int]) -> dict[str, int]:
-    """Chunk sizes per dimension: the requested ones, the rest filled towards ~1e6 points a chunk
-    (TARGET_CHUNK_POINTS). Trailing (spatial) dimensions are kept whole first, so each line along x is
+    """Chunk sizes per dimension: the requested ones, the rest filled towards TARGET_CHUNK_POINTS a
+    chunk. Trailing (spatial) dimensions are kept whole first, so each line along x is
     one chunk.
 
     A sweep of PARALLEL_ABOVE points or more that this leaves with fewer than MIN_TASKS chunks (up to
-    ~4e6 points) has its trailing dimensions cut further (`_spread`): a 1e6-point grid is four tasks of
+    ~2e6 points) has its trailing dimensions cut further (`_spread`): a 1e6-point grid is four tasks of
     2.5e5 points, not one that leaves the second core idle. Only the spatial dimensions are cut there,
     where fields are evaluated point by point; the sweep dimensions keep the blocks they had, so the
     per-case quantities over them (stick radii, series tables, peaks) are computed from the same blocks
@@ -143,7 +145,8 @@ def _spread(sizes: dict[str, int], requested: dict[str, int], chunking: dict[str
         if dim in requested:
             continue
         pieces = -(-sizes[dim] // out[dim])
-        wanted = min(sizes[dim], pieces * -(-MIN_TASKS // count))
+        others = count // pieces                       # chunks of the other dimensions
+        wanted = min(sizes[dim], max(pieces, -(-MIN_TASKS // others)))
         out[dim] = -(-sizes[dim] // wanted)
     return out
 

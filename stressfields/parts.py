@@ -86,7 +86,7 @@ def part_edges(ds: xr.Dataset, dim: str) -> list[int]:
     """Part boundaries along ``dim``: at chunk boundaries, one row of chunks a part, or, where a row is
     large (PARALLEL_ABOVE points or more), as many rows as give a part MIN_TASKS chunks: a part's
     chunks are its tasks, and a part of one task would leave every other core idle while it is
-    computed (a 1e8-point grid of 1e6-point rows: 25 parts of four tasks, not 100 of one)."""
+    computed (a 1e8-point grid of 5e5-point rows: 50 parts of four tasks, not 200 of one)."""
     from .build import MIN_TASKS, PARALLEL_ABOVE
 
     rows = [int(n) for n in ds.chunks[dim]]

@@ -101,10 +101,12 @@ def test_default_chunks_give_every_core_two_tasks(sizes):
 @pytest.mark.parametrize("sizes", [{"nu": 12, "mu": 3, "y": 101, "x": 121}, {"a": 5, "b": 7, "x": 6000},
                                    {"mu": 2, "x": 500_000}, {"y": 3162, "x": 3162}])
 def test_only_trailing_dimensions_are_cut_further(sizes):
-    """The sweep dimensions keep the blocks of the ~1e6-point rule (so per-case quantities over them keep
-    their bits); only the trailing ones are cut to reach four tasks."""
+    """The sweep dimensions keep the blocks of the points-per-chunk rule (so per-case quantities over them
+    keep their bits); only the trailing ones are cut to reach four tasks."""
+    from stressfields.build import TARGET_CHUNK_POINTS
+
     old = {}
-    budget = 1_000_000
+    budget = TARGET_CHUNK_POINTS
     for dim in reversed(list(sizes)):            # the rule before: trailing dimensions whole first
         old[dim] = max(1, min(sizes[dim], budget))
         budget = max(1, budget // old[dim])
