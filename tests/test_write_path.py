@@ -174,25 +174,28 @@ def test_parts_store_what_a_whole_run_stores(tmp_path, options):
     assert digest == stored == file_hash(sf.write(ds, tmp_path / "whole.nc", **options))[0]
 
 
-def test_large_rows_are_grouped_so_a_part_has_four_tasks():
+def test_large_rows_are_grouped_so_a_part_has_four_tasks_and_enough_points(monkeypatch):
+    from stressfields import parts
     from stressfields.parts import part_edges
 
     big = sf.writers.prepare(sf.generate({**CONE, "parameters": {
         **CONE["parameters"], "mu": list(np.linspace(0.1, 0.5, 10)),
         "y": {"start": -1, "stop": 1, "num": 400}, "x": {"start": -1.5, "stop": 1.5, "num": 500}}},
         chunks={"mu": 1}))
-    assert part_edges(big, "mu") == [0, 4, 8, 10]            # rows of 2e5 points: four to a part
+    assert part_edges(big, "mu") == [0, 10]                  # rows of 2e5 points: 4e6 points to a part
+    monkeypatch.setattr(parts, "PART_POINTS", 1)
+    assert part_edges(big, "mu") == [0, 4, 8, 10]            # ... and at least four tasks
     small = sf.writers.prepare(sf.generate(CONE, chunks={"mu": 1}))
     assert part_edges(small, "mu") == [0, 1, 2, 3]           # small rows: a part each, as before
 
 
 KILLED = """scenario = "conical"
 [parameters]
-mu = { start = 0.1, stop = 0.5, num = 16 }
+mu = { start = 0.1, stop = 0.5, num = 12 }
 nu = 0.3
 ux0 = 0.25
-y = { start = -1.5, stop = 1.5, num = 400 }
-x = { start = -1.5, stop = 1.5, num = 500 }
+y = { start = -1.5, stop = 1.5, num = 1000 }
+x = { start = -1.5, stop = 1.5, num = 1000 }
 [output]
 variables = ["sigma_xx", "von_mises"]
 chunks = { mu = 1 }
@@ -209,7 +212,7 @@ def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part
     whole, target = tmp_path / "whole.nc", tmp_path / "out.nc"
     assert cli.main(["run", str(recipe), "-o", str(whole), "-q"]) == 0
     plan = kill_after_two_parts(recipe, target, timeout=120)
-    assert plan["edges"] == [0, 4, 8, 12, 16] and 2 <= len(plan["parts"]) < 4
+    assert plan["edges"] == [0, 4, 8, 12] and len(plan["parts"]) == 2     # rows of 1e6 points: 4e6 a part
     # a finished part damaged after the kill: one value changed on disk, its CRC now stale
     with netCDF4.Dataset(tmp_path / "out.nc.parts" / "data.nc", "a") as nc:
         nc["von_mises"][5, 5, 7] += 1e-9
@@ -219,7 +222,7 @@ def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part
                         or real(nc, sources, *a))
     assert cli.main(["run", str(recipe), "-o", str(target), "-q", "--resume"]) == 0
     done = {int(i) for i in plan["parts"]} - {1}
-    assert set(computed) == {0, 4, 8, 12} - {4 * i for i in done}     # the damaged part and the missing ones only
+    assert set(computed) == {0, 4, 8} - {4 * i for i in done}     # the damaged part and the missing ones only
     assert file_hash(target)[0] == file_hash(target)[1] == file_hash(whole)[0]
     assert not (tmp_path / "out.nc.parts").exists()
 
