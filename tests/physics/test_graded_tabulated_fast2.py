@@ -99,10 +99,11 @@ def test_tables_are_reused_across_rows():
 
 # ---------------------------------------------------------------------- power-law closed forms
 
+@pytest.mark.parametrize("knots", [41, 401])
 @pytest.mark.parametrize("rtol", RTOLS)
 @pytest.mark.parametrize("k", KS)
-def test_against_power_law_closed_forms(k, rtol):
-    tab, parts = cubic_table()
+def test_against_power_law_closed_forms(k, rtol, knots):
+    tab, parts = cubic_table(knots)
     m = dict(MAT, k=k)
     p = N.pressure_quad(None, A, tab, rtol=rtol, rho=RHO_P, **m)
     ref = sum(N.pressure(None, A, n=n, A_n=An, rho=RHO_P, **m) for n, An in parts)
