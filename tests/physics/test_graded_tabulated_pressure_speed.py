@@ -1,10 +1,11 @@
 """Tabulated (cubic-spline) profiles on the graded half-space: the pressure (G17) on the fast route.
 
 The near part [r, X] takes g' from the panel interpolant (G51) of the cached knot-panel values; the
-far part the panel nodes themselves.  Held against scipy quad of the defining integral (G17) with the exact g' (G14) for a hyperboloid at 25 and 200 samples, at r/a from the
-centre to 1 - 1e-9, k from 1e-6 to 0.9 and rtol = 1e-6 ... 1e-12.  The work is counted in g'
-evaluations: fixed per (a, k), independent of the number of points, linear in the knots. (The
-power-law closed forms, with 41 and 401 knots: tests/physics/test_graded_tabulated_fast2.py.)
+far part the panel nodes themselves. Held against scipy quad of the defining integral (G17) with the
+exact g' (G14) for a hyperboloid at 25 and 200 samples, at r/a from the centre to 1 - 1e-9, k from
+1e-6 to 0.9 and rtol = 1e-6 ... 1e-12. The work is counted in g' evaluations: fixed per (a, k),
+independent of the number of points, linear in the knots. (The power-law closed forms, with 41 and
+401 knots: tests/physics/test_graded_tabulated_fast2.py.)
 """
 
 import numpy as np
@@ -12,25 +13,11 @@ import pytest
 from scipy.integrate import quad
 
 from stressfields.physics.graded import normal as N
-from stressfields.physics.graded import profiles as P
 from stressfields.physics.graded.material import c_N_star
 
-A = 0.6
-MAT = dict(nu=0.3, E0=2.0e9, c0=1.0e-3)
-RTOLS = (1e-6, 1e-8, 1e-10, 1e-12)
-KS = (1e-6, 0.3, 0.5, 0.9)
+from test_graded_tabulated_fast2 import A, KS, MAT, RTOLS, hyperboloid, rel
+
 RHO = np.array([0.0, 1e-9, 0.05, 0.5, 0.99, 1.0 - 1e-9])
-
-
-def rel(x, ref):
-    x, ref = np.asarray(x, float), np.asarray(ref, float)
-    return np.max(np.abs(x / ref - 1))
-
-
-def hyperboloid(n):
-    """sqrt(r^2 + 0.04) - 0.2 (in units of A) sampled at n radii, smooth tip (f'(0) = 0)."""
-    knots = np.linspace(0.0, 1.2, n) * A
-    return P.Tabulated(knots, np.sqrt(knots ** 2 + 0.04 * A * A) - 0.2 * A, slope_at_0=0.0), knots
 
 
 def _dg(prof, k):
