@@ -28,8 +28,6 @@ import xarray as xr
 
 ATTR = "stressfields_content_sha256"
 _SKIP_GLOBAL = {"history", ATTR}
-#: values hashed per slice of the first dimension, to keep memory bounded on large files
-_SLICE_BYTES = 64 * 2 ** 20
 #: slabs read for hashing: small enough for reading and hashing to overlap, large enough to stream
 _READ_BYTES = 8 * 2 ** 20
 
@@ -148,7 +146,7 @@ def stamp(path: str | Path) -> str:
     return digest
 
 
-def slabs(shape: tuple[int, ...], itemsize: int, limit: int = _SLICE_BYTES):
+def slabs(shape: tuple[int, ...], itemsize: int, limit: int):
     """Index tuples that cover an array of `shape` in C order, each slab at most ~`limit` bytes."""
     if not shape:
         yield ()

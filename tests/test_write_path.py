@@ -51,6 +51,19 @@ def test_the_hash_covers_the_heads_and_digests_in_name_order():
     assert hashing.content_hash(ds) == h.hexdigest()
 
 
+@pytest.mark.parametrize("piece", [8, 24, 8 * 31 + 1, 10 ** 9])
+def test_blocks_handed_to_hdf5_in_pieces_store_the_same_values(tmp_path, monkeypatch, piece):
+    """A block is written in C-order pieces of at most WRITE_BYTES: single values, parts of a row,
+    whole rows, the whole block; every piece lands where it belongs (the file's hash, read back, is
+    that of a file written in whole blocks)."""
+    from stressfields import netcdf
+
+    ds = sf.generate(CONE, chunks={"mu": 2, "x": 17})
+    whole = file_hash(sf.write(ds, tmp_path / "whole.nc"))
+    monkeypatch.setattr(netcdf, "WRITE_BYTES", piece)
+    assert file_hash(sf.write(ds, tmp_path / "pieces.nc")) == whole
+
+
 def test_earlier_forms_of_the_content_hash_still_verify(tmp_path):
     """A file that stores its hash in an earlier form (one stream over all values; before that without
     attribute types) verifies, and a changed value is still caught."""
