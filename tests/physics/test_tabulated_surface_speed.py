@@ -254,3 +254,20 @@ def test_cost_does_not_grow_with_the_sample_count(monkeypatch):
     assert max(lookups.values()) < 200, cost
     assert lookups[1000] < 1.2 * lookups[25], cost
     assert all(nodes < 70 * depth for _, nodes, depth in cost.values()), cost
+
+
+def test_pairs_per_pass_do_not_change_the_values(monkeypatch):
+    """``_Tree.sums`` takes the (point, block) pairs _PAIRS at a time: 7 pairs per pass (the last
+    pass short, many passes per point) give the one-pass values to rounding."""
+    prof, c, pm = _case("measured_like")
+    x, y = _points(c)
+    one = ax.surface_stress(x, y, A, c, NU, MU, prof, method="quadrature", rtol=1e-10)
+    d_one = ax.surface_dpdz(x, y, A, c, NU, MU, prof, method="quadrature", rtol=1e-10)
+    monkeypatch.setattr(I, "_PAIRS", 7)
+    many = ax.surface_stress(x, y, A, c, NU, MU, prof, method="quadrature", rtol=1e-10)
+    d_many = ax.surface_dpdz(x, y, A, c, NU, MU, prof, method="quadrature", rtol=1e-10)
+    for k, S in [(k, pm) for k in one] + [("dpdz", pm / A)]:
+        v, w = (d_one, d_many) if k == "dpdz" else (one[k], many[k])
+        np.testing.assert_array_equal(np.isfinite(v), np.isfinite(w))
+        fin = np.isfinite(v)
+        np.testing.assert_allclose(w[fin], v[fin], rtol=0, atol=1e-14 * S)

@@ -530,21 +530,26 @@ class _Tree:
 
     def sums(self, pt, flat, level, r, P, terms):
         """{kind: sum over a point's blocks of sum_i W[phi][block, i] k(u_i, r)} for the
-        (kind, phi, kernel) ``terms``."""
-        out = {}
-        if pt.size == 0:
-            return {kind: np.zeros(P) for kind, _, _ in terms}
+        (kind, phi, kernel) ``terms``, _PAIRS (point, block) pairs at a time."""
+        vals = {kind: np.empty(pt.size) for kind, _, _ in terms}
         width = self.w * np.exp2(self.L - level)
         centre = (flat - ((np.int64(1) << level) - 1) + 0.5) * width
-        u = centre[:, None] + (0.5 * width)[:, None] * self.xi[None, :]
-        rr = r[pt][:, None]
-        cache, moments = {}, {}
-        for kind, q, kernel in terms:
-            if q not in moments:
-                moments[q] = self.W[q][flat]
-            vals = np.einsum("ij,ij->i", moments[q], kernel(u, rr, cache))
-            out[kind] = np.bincount(pt, weights=vals, minlength=P)
-        return out
+        for s in range(0, pt.size, _PAIRS):
+            sl = slice(s, s + _PAIRS)
+            u = centre[sl, None] + (0.5 * width[sl])[:, None] * self.xi[None, :]
+            rr = r[pt[sl]][:, None]
+            cache, moments = {}, {}
+            for kind, q, kernel in terms:
+                if q not in moments:
+                    moments[q] = self.W[q][flat[sl]]
+                vals[kind][sl] = np.einsum("ij,ij->i", moments[q], kernel(u, rr, cache))
+        return {kind: np.bincount(pt, weights=v, minlength=P) for kind, v in vals.items()}
+
+
+# (point, block) pairs per pass of ``_Tree.sums``: with p = 16 nodes its work arrays are 0.5 MB and
+# stay in cache; all pairs of 2000 points at once (1.3e6 nodes, 10 MB arrays) made the sums 3.7x
+# slower (1000 samples, rtol 1e-10, surface stresses: 11 ms against 3 ms; 1024-16384 pairs alike)
+_PAIRS = 4096
 
 
 def normal_force(profile, h, ords: Orders):
