@@ -400,14 +400,16 @@ def log_integral(profile, lo, hi, ords: Orders):
 # u = r then contributes sum_i W_i k(u_i, r), with the kernel's interpolation error as its only
 # error (A105).  Per point the range splits into such blocks (about two per tree level) and two
 # short ends next to r and to the range's other limit, which the knot-resolving rules take as
-# before: the cost per point is O(log knots) (1000 samples, rtol 1e-10, stresses and dp/dz: 144
-# lookups and 625 block nodes per point against 18516 lookups of the knot-resolving rules).
+# before: the cost per point is O(log knots) (1000 samples, rtol 1e-10, stresses and dp/dz: 139
+# lookups and 632 block nodes per point against 18516 lookups of the knot-resolving rules).
 
 _BLOCKS = True          # False: the knot-resolving rules alone (the reference of the tests)
-# _SEP and _LEAF_FRACTION: of (1, 1.5, 2) x (0.25, 0.5, 1), (1.5, 0.5) was among the fastest on
-# 25 and 1000 samples (the others within 10-40 %: a larger _SEP means fewer blocks of more nodes,
-# a larger leaf fewer levels but more knots in the ends)
-_SEP = 1.5              # distance of a block from the singular point u = r, in block widths
+# _SEP and _LEAF_FRACTION: of (1, 1.5, 2) x (0.25, 0.5), timed with the sums in cache-sized passes
+# (surface stresses and dp/dz at rtol 1e-10, 2000 points, 25/200/1000 samples), (1, 0.5) was the
+# fastest or within 3 % of it on every table (1.37e5/1.38e5/1.10e5 stress points per CPU second;
+# (1.5, 0.5): 0.98e5/1.38e5/1.07e5): a smaller _SEP means more blocks of fewer nodes, a larger
+# leaf fewer levels but more knots in the ends
+_SEP = 1.0              # distance of a block from the singular point u = r, in block widths
 _LEAF_FRACTION = 0.5    # leaf width / median knot spacing: the ends then hold one knot or none
 _MAX_LEVEL = 15         # at most 2^15 leaves (r_max / 2^15 on tables with uneven spacing)
 _LEAF_ORDER = 24        # graded Gauss nodes per knot segment of a leaf moment (exact to rounding)
