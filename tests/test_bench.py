@@ -75,16 +75,19 @@ def test_the_bench_command_loads_the_harness():
     assert harness.QUICK.points < harness.FULL.points and callable(harness.run)
 
 
+#: made-up figures of a bench run's whole-process section (one 1e7-point pair)
+FIGURES = {"process_1e+07_all_pipeline_s": 4.0, "process_1e+07_all_pipeline_cpu_s": 5.0,
+           "process_1e+07_all_hand_s": 3.0, "process_1e+07_all_hand_cpu_s": 3.0,
+           "process_1e+07_all_ratio_wall": 1.3, "process_1e+07_all_ratio_cpu": 1.6,
+           "fixed_describe_s": 0.1, "fixed_import_s": 0.02, "fixed_run_1e4_s": 1.0, "fixed_bare_python_s": 0.02,
+           "fixed_dependencies_s": 0.6, "hertz_mindlin_512_first_call_s": 0.8, "hertz_mindlin_512_first_run_s": 1.2,
+           "sha256_bytes_per_s": 2.2e9, "disk_bytes_per_s": 1.76e9}
+
+
 def test_the_whole_process_section_reports_the_floor_and_its_share():
     """The report's arithmetic on made-up figures: floor = kernels + 88 bytes at the disk rate + 88
     bytes through SHA-256, and its share of the CPU per point of the 1e7-point run."""
-    tp = {"process_1e+07_all_pipeline_s": 4.0, "process_1e+07_all_pipeline_cpu_s": 5.0,
-          "process_1e+07_all_hand_s": 3.0, "process_1e+07_all_hand_cpu_s": 3.0,
-          "process_1e+07_all_ratio_wall": 1.3, "process_1e+07_all_ratio_cpu": 1.6,
-          "fixed_describe_s": 0.1, "fixed_import_s": 0.02, "fixed_run_1e4_s": 1.0, "fixed_bare_python_s": 0.02,
-          "fixed_dependencies_s": 0.6, "hertz_mindlin_512_first_call_s": 0.8, "hertz_mindlin_512_first_run_s": 1.2,
-          "sha256_bytes_per_s": 2.2e9, "disk_bytes_per_s": 1.76e9, "kernels_alone_cpu_s_per_point": 200e-9}
-    text = "\n".join(bench._process_lines(tp))
+    text = "\n".join(bench._process_lines({**FIGURES, "kernels_alone_cpu_s_per_point": 200e-9}))
     # 200 + 50 + 40 = 290 ns against 500 ns per point
     assert "the kernels alone 200 ns" in text and "at the disk rate 50 ns, hashing them 40 ns: 290 ns" in text
     assert "1e+07 points 58%" in text
@@ -93,12 +96,7 @@ def test_the_whole_process_section_reports_the_floor_and_its_share():
 def test_the_first_call_line_says_whether_a_fortieth_of_the_peer_is_reachable():
     """The 40x first-call target against the import of xarray alone, on made-up figures: 9.2 s of
     the peer leave 0.23 s, less than a 0.25 s import; 12 s leave 0.30 s, more."""
-    tp = {"process_1e+07_all_pipeline_s": 4.0, "process_1e+07_all_pipeline_cpu_s": 5.0,
-          "process_1e+07_all_hand_s": 3.0, "process_1e+07_all_hand_cpu_s": 3.0,
-          "process_1e+07_all_ratio_wall": 1.3, "process_1e+07_all_ratio_cpu": 1.6,
-          "fixed_describe_s": 0.1, "fixed_import_s": 0.02, "fixed_run_1e4_s": 1.0, "fixed_bare_python_s": 0.02,
-          "fixed_dependencies_s": 0.6, "fixed_xarray_s": 0.25, "hertz_mindlin_512_first_call_s": 0.8,
-          "hertz_mindlin_512_first_run_s": 1.2, "sha256_bytes_per_s": 2.2e9, "disk_bytes_per_s": 1.76e9}
+    tp = {**FIGURES, "fixed_xarray_s": 0.25}
     short = "\n".join(bench._process_lines({**tp, "peer_512_first_s": 9.2}))
     assert "A fortieth of the peer's solve, 0.23 s, is less than a fresh process takes to import xarray " \
            "alone (0.25 s)" in short

@@ -548,9 +548,10 @@ class _Tree:
         return {kind: np.bincount(pt, weights=v, minlength=P) for kind, v in vals.items()}
 
 
-# (point, block) pairs per pass of ``_Tree.sums``: with p = 16 nodes its work arrays are 0.5 MB and
-# stay in cache; all pairs of 2000 points at once (1.3e6 nodes, 10 MB arrays) made the sums 3.7x
-# slower (1000 samples, rtol 1e-10, surface stresses: 11 ms against 3 ms; 1024-16384 pairs alike)
+# (point, block) pairs per pass of ``_Tree.sums``: with p = 16-22 nodes its work arrays are 0.5-0.7
+# MB and stay in cache; all pairs of 2000 points at once (1.3e6 nodes, 10 MB arrays) made the sums
+# twice as slow (1000 samples, rtol 1e-10, surface stresses: 11 ms against 5 ms a call; 1024 to
+# 16384 pairs per pass alike)
 _PAIRS = 4096
 
 
