@@ -406,7 +406,7 @@ def log_integral(profile, lo, hi, ords: Orders):
 _BLOCKS = True          # False: the knot-resolving rules alone (the reference of the tests)
 # _SEP and _LEAF_FRACTION: of (1, 1.5, 2) x (0.25, 0.5), timed with the sums in cache-sized passes
 # (surface stresses and dp/dz at rtol 1e-10, 2000 points, 25/200/1000 samples), (1, 0.5) was the
-# fastest or within 3 % of it on every table (1.37e5/1.38e5/1.10e5 stress points per CPU second;
+# fastest or within 4 % of it on every table (1.37e5/1.38e5/1.10e5 stress points per CPU second;
 # (1.5, 0.5): 0.98e5/1.38e5/1.07e5): a smaller _SEP means more blocks of fewer nodes, a larger
 # leaf fewer levels but more knots in the ends
 _SEP = 1.0              # distance of a block from the singular point u = r, in block widths
