@@ -266,8 +266,7 @@ def test_pairs_per_pass_do_not_change_the_values(monkeypatch):
     monkeypatch.setattr(I, "_PAIRS", 7)
     many = ax.surface_stress(x, y, A, c, NU, MU, prof, method="quadrature", rtol=1e-10)
     d_many = ax.surface_dpdz(x, y, A, c, NU, MU, prof, method="quadrature", rtol=1e-10)
-    for k, S in [(k, pm) for k in one] + [("dpdz", pm / A)]:
-        v, w = (d_one, d_many) if k == "dpdz" else (one[k], many[k])
+    for v, w, S in [(one[k], many[k], pm) for k in one] + [(d_one, d_many, pm / A)]:
         np.testing.assert_array_equal(np.isfinite(v), np.isfinite(w))
         fin = np.isfinite(v)
         np.testing.assert_allclose(w[fin], v[fin], rtol=0, atol=1e-14 * S)
