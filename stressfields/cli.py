@@ -1,4 +1,4 @@
-"""Command line: stressfields run | list | describe | validate | schema | export | hash | compare | bench.
+"""Command line: stressfields run | list | describe | validate | schema | export | hash | compare | suite | bench.
 
 The heavy libraries (xarray, dask, the writers) are imported inside the commands that compute or
 write: `--help`, `list`, `describe`, `schema` and `validate` need only the scenario declarations,
@@ -198,6 +198,13 @@ def _parser() -> argparse.ArgumentParser:
     cmp.add_argument("--overwrite", action="store_true", help="replace the report files")
     cmp.set_defaults(func=_compare)
 
+    ste = sub.add_parser("suite", help="the published reference suite (suite/ of a clone): build it into a "
+                         "directory, or verify a built one against the registered hashes")
+    ste.add_argument("action", choices=("build", "verify"), help="build: write every dataset (skipping those "
+                     "present whose hashes verify), key_values.csv and catalog.yaml; verify: recompute every hash")
+    ste.add_argument("directory", type=Path)
+    ste.set_defaults(func=_suite)
+
     bench = sub.add_parser("bench", help="chart accuracy against run time for every method (not a test)")
     bench.add_argument("-d", "--out-dir", type=Path, default=Path("docs/bench"),
                        help="where the results NetCDF and the PNG chart go (default: docs/bench)")
@@ -296,6 +303,23 @@ def _hash(args) -> int:
             print(f"{path}: {digest} MISMATCH (stored {stored})")
             bad += 1
     return 1 if bad else 0
+
+
+def _suite(args) -> int:
+    """Exit 0 when every dataset matches the registry, 1 when one differs (each said on stderr), 2 on
+    bad input (no suite, a directory that cannot be made)."""
+    from .suite import build, verify
+
+    if args.action == "verify" and not args.directory.is_dir():
+        raise UsageError(f"{args.directory}: no such directory (build the suite into it first)")
+    if args.action == "build":
+        _check_out_dir(args.directory, "DIRECTORY")
+    say = lambda line: print(line, file=sys.stderr)
+    problems = (build if args.action == "build" else verify)(args.directory, say=say)
+    for problem in problems:
+        print(f"MISMATCH {problem}", file=sys.stderr)
+    print(f"{args.action}: {'ok' if not problems else f'{len(problems)} dataset(s) differ from the registry'}")
+    return 1 if problems else 0
 
 
 def _bench(args) -> int:
