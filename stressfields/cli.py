@@ -172,10 +172,15 @@ def _parser() -> argparse.ArgumentParser:
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
     sch.set_defaults(func=_schema)
 
-    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, atomically")
+    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, atomically; or "
+                         "with --layout, a file to an ML-ready directory split by its recipe's [splits]")
     exp.add_argument("store", type=Path)
     exp.add_argument("-o", "--output", type=Path, required=True)
     exp.add_argument("--overwrite", action="store_true")
+    exp.add_argument("--layout", choices=("well", "parquet"), default=None,
+                     help="write the directory OUTPUT instead: well (The Well: data/{train,valid,test}/*.hdf5, "
+                     "stats.yaml, metadata YAML) or parquet (one row per point; pip install 'stressfields[ml]'); "
+                     "both with a Croissant card")
     exp.set_defaults(func=_export)
 
     hsh = sub.add_parser("hash", help="recompute a file's content hash and check it against the stored one")
@@ -276,6 +281,11 @@ def _export(args) -> int:
 
     if not args.store.exists():
         raise UsageError(f"{args.store}: no such file or store")
+    if args.layout:
+        from .mlexport import export_layout
+
+        export_layout(args.store, args.output, args.layout, overwrite=args.overwrite)
+        return 0
     export(args.store, args.output, overwrite=args.overwrite)
     return 0
 
