@@ -27,6 +27,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from . import __version__
 from .errors import OutputError
 from .options import DTYPES, NONFINITE
+from .textfiles import write_text as _write_text
 
 #: the unit conversions of `compare` (comparison.UNITS, held equal by tests/test_compare.py)
 COMPARE_UNITS = ("Pa", "kPa", "MPa", "GPa", "m", "mm", "um", "N", "1")
@@ -262,18 +263,6 @@ def _has_matplotlib() -> bool:
     import importlib.util
 
     return importlib.util.find_spec("matplotlib") is not None
-
-
-def _write_text(path: Path, text: str) -> None:
-    """Atomically: a temporary beside the target, renamed onto it when complete."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
-    except OSError as exc:
-        raise OutputError(f"{path}: {exc.strerror or exc}") from None
-    finally:
-        tmp.unlink(missing_ok=True)
 
 
 def _export(args) -> int:

@@ -24,6 +24,7 @@ from typing import Callable
 import numpy as np
 
 from .errors import OutputError
+from .textfiles import write_text as _write_text
 
 #: the suite shipped with this source tree
 SUITE_DIR = Path(__file__).resolve().parents[1] / "suite"
@@ -275,17 +276,3 @@ def catalog_yaml(reg: dict, folder: Path) -> str:
                         "suite_version": reg["suite_version"]}, "sources": sources}
     return "# written by stressfields.suite.register from registry.json and recipes/\n" + yaml.safe_dump(
         doc, sort_keys=False, width=120)
-
-
-def _write_text(path: Path, text: str) -> None:
-    """Atomically: a temporary beside the target, renamed onto it when complete."""
-    import os
-
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
-    except OSError as exc:
-        raise OutputError(f"{path}: {exc.strerror or exc}") from None
-    finally:
-        tmp.unlink(missing_ok=True)
