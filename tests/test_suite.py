@@ -198,6 +198,13 @@ def test_cofea_block_key_values(built):
     assert float(ds.von_mises_peak) == pytest.approx(2 * peak * p0, rel=1e-9)
     assert float(ds.von_mises_peak_depth) == pytest.approx(depth, rel=1e-6)
     assert float(ds.tau_max_peak_r) == 0 and float(ds.von_mises_peak_r) == 0
+    pts = open_(built, "cofea_hertz_block_points")          # the axis nodes against Johnson's eq. 3.45
+    sig = hertz_axis(0.3)[0]
+    axis = (pts.x.values == 0) & (pts.z.values > 0)
+    assert axis.sum() == 6
+    for z, s_xx, s_zz, tau in zip(*(pts[v].values[axis] for v in ("z", "sigma_xx", "sigma_zz", "tau_max"))):
+        s_r, s_z = sig(z)
+        assert (s_xx / p0, s_zz / p0, tau / p0) == pytest.approx((s_r, s_z, (s_r - s_z) / 2), rel=1e-12)
     # the grid's own maximum is no larger than the peak, and close to it on this 0.05 a grid
     assert float(ds.tau_max.max()) <= float(ds.tau_max_peak) * (1 + 1e-12)
     assert float(ds.tau_max.max()) == pytest.approx(float(ds.tau_max_peak), rel=2e-3)
@@ -227,6 +234,12 @@ def test_abaqus_cylinders_tend_to_the_hertz_line_contact(built):
         assert np.all(ds.pressure.sel(a=a).values[np.abs(x) > b * (1 + 1e-9)] == 0)
     scaled = np.array(scaled)
     assert np.ptp(scaled, axis=0).max() < 0.05 * scaled.max() + 1e-3
+    pts = open_(built, "abaqus_cylinders_line_points")
+    b = pts.a.values * lam / 2
+    p0 = e_star * b / (2 * r_eff)
+    hertz = p0 * np.sqrt(np.clip(1 - (pts.x.values / b) ** 2, 0, None))
+    np.testing.assert_allclose(pts.pressure.values, hertz, rtol=0, atol=(math.pi * b.max() / lam) ** 2 * p0.max())
+    assert np.all(pts.pressure.values[pts.x.values > b] == 0)
 
 
 def test_registry_json_is_what_build_copies(built):
