@@ -29,9 +29,15 @@ def built(tmp_path_factory):
     return out, problems
 
 
-def _cli(*args):
-    return subprocess.run([sys.executable, "-m", "stressfields", "suite", *map(str, args)], cwd=ROOT,
-                          capture_output=True, text=True, timeout=120)
+def _cli(capsys, *args):
+    """`stressfields suite ARGS` in this process (the command line's own entry point, without a
+    second interpreter's imports): (exit code, stdout, stderr)."""
+    from stressfields.cli import main
+
+    capsys.readouterr()
+    code = main(["suite", *map(str, args)])
+    out, err = capsys.readouterr()
+    return code, out, err
 
 
 def open_(built, name):
@@ -70,12 +76,12 @@ def test_registry_lists_every_recipe_and_the_catalog_every_dataset():
 
 # -- build and verify --------------------------------------------------------------------------------
 
-def test_build_matches_the_registry_and_verify_passes(built):
+def test_build_matches_the_registry_and_verify_passes(built, capsys):
     out, problems = built
     assert problems == []
-    done = _cli("verify", out)
-    assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == "verify: ok"
+    code, stdout, stderr = _cli(capsys, "verify", out)
+    assert code == 0, stderr
+    assert stdout.strip() == "verify: ok"
 
 
 def test_build_resumes_keeping_verified_files(built):
@@ -87,7 +93,7 @@ def test_build_resumes_keeping_verified_files(built):
     assert {p.name: p.stat().st_mtime_ns for p in out.glob("*.nc")} == stamp
 
 
-def test_verify_finds_a_changed_value_and_a_missing_file_and_build_repairs(built, tmp_path):
+def test_verify_finds_a_changed_value_and_a_missing_file_and_build_repairs(built, tmp_path, capsys):
     import shutil
 
     out = tmp_path / "copy"
@@ -95,10 +101,10 @@ def test_verify_finds_a_changed_value_and_a_missing_file_and_build_repairs(built
     with netCDF4.Dataset(out / "ssnv104_points.nc", "a") as nc:
         nc["sigma_zz"][3] = nc["sigma_zz"][3] * (1 + 1e-15) + 1.0
     (out / "graded_stick_radius.nc").unlink()
-    done = _cli("verify", out)
-    assert done.returncode == 1
-    bad = [line for line in done.stderr.splitlines() if line.startswith("MISMATCH")]
-    assert len(bad) == 2 and "ssnv104_points: " in bad[1] + bad[0] and "graded_stick_radius: missing" in done.stderr
+    code, _, stderr = _cli(capsys, "verify", out)
+    assert code == 1
+    bad = [line for line in stderr.splitlines() if line.startswith("MISMATCH")]
+    assert len(bad) == 2 and "ssnv104_points: " in bad[1] + bad[0] and "graded_stick_radius: missing" in stderr
     said = []
     assert suite.build(out, say=said.append) == []
     rebuilt = sorted(line.split(":")[0].split()[-1] for line in said if "built" in line)
@@ -107,7 +113,8 @@ def test_verify_finds_a_changed_value_and_a_missing_file_and_build_repairs(built
 
 
 def test_verify_of_a_missing_directory_is_one_line_exit_2(tmp_path):
-    done = _cli("verify", tmp_path / "nowhere")
+    done = subprocess.run([sys.executable, "-m", "stressfields", "suite", "verify", str(tmp_path / "nowhere")],
+                          cwd=ROOT, capture_output=True, text=True, timeout=60)
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1 and "nowhere" in done.stderr
 
