@@ -20,7 +20,8 @@ A recipe::
     x = [0.1, 0.5, 2.0]
     z = [0.2, 0.0, 0.5]
     # or, as the one key of [points]: file = "nodes.csv" (.csv, .npy, .npz, .nc; relative to the
-    # recipe's directory), or sample = { n = 1000, method = "sobol", seed = 1, mu = [0.0, 1.0] }
+    # recipe's directory and read only from inside it, see pointfiles.resolve),
+    # or sample = { n = 1000, method = "sobol", seed = 1, mu = [0.0, 1.0] }
 
 Every error names the key, the value and what is allowed; all errors are reported at once.
 Bounds are checked before any work: the file (a regular file of at most MAX_RECIPE_BYTES, UTF-8,
@@ -48,10 +49,11 @@ from typing import Any, Collection, Mapping
 import numpy as np
 
 from .errors import show
-from .pointfiles import MAX_SWEEP, file_label, read_points_file
+from .pointfiles import MAX_SWEEP, file_label, name_problem, read_points_file
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
 from .options import output_option_problems
+from .units import allowed as allowed_units, factor as unit_factor, show_unit
 
 TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot", "splits")
 #: the dimension along which the [points] columns vary together (last, after the swept ones)
@@ -135,13 +137,21 @@ class Recipe:
         return int(np.prod(list(self.shape.values()), dtype=np.int64)) if self.dims else 1
 
 
-def load(source: str | Path | Mapping) -> Recipe:
-    """Parse and validate a recipe from a TOML path, TOML text or a dict."""
+def load(source: str | Path | Mapping, allow_read=()) -> Recipe:
+    """Parse and validate a recipe from a TOML path or a dict.
+
+    A points file the recipe names (``[points] file``) is read only from inside the recipe's folder
+    (a dict's: the working directory), symbolic links resolved, or from inside one of the folders
+    ``allow_read`` lists (see `pointfiles.resolve`).
+    """
     if isinstance(source, Mapping):
         data, text, label = dict(source), None, "recipe"
     else:
         path = Path(source)
         label = str(path)
+        why = name_problem(label)
+        if why is not None:         # said with ascii(): the name itself may not print
+            raise RecipeError([f"cannot read the recipe file: {why}"], ascii(label))
         text = _read_text(path, label)
         _check_shape(text, label)
         try:
@@ -150,7 +160,7 @@ def load(source: str | Path | Mapping) -> Recipe:
             raise RecipeError([f"not valid TOML: {exc}"], label) from None
         except RecursionError:          # _check_shape bounds nesting; kept as a last guard
             raise RecipeError([f"not valid: nested deeper than {MAX_NESTING} levels"], label) from None
-    return _validate(data, text, label, None if isinstance(source, Mapping) else path.parent)
+    return _validate(data, text, label, None if isinstance(source, Mapping) else path.parent, allow_read)
 
 
 def _read_text(path: Path, label: str) -> str:
@@ -187,16 +197,20 @@ def _read_text(path: Path, label: str) -> str:
 
 
 #: strings and comments, in TOML's order of precedence, so that brackets and dots inside them are
-#: not counted; an unterminated string runs to the end of its line (or file), so that every
-#: character is scanned once (possessive quantifiers: no backtracking on hostile text)
-_STRINGS = re.compile(r'"""(?:[^"\\]|\\[\s\S]|"(?!""))*+(?:"""|\Z)|\'\'\'[\s\S]*?(?:\'\'\'|\Z)'
-                      r'|"(?:[^"\\\n]|\\.)*+(?:"|$)|\'[^\'\n]*+(?:\'|$)|#[^\n]*+', re.M)
+#: not counted; an unterminated string runs to the end of its line (or file), a trailing backslash
+#: included, so that every character is scanned once (possessive quantifiers: no backtracking on
+#: hostile text; without the backslash a line of "\"\"\... made every quote a failed start that
+#: scanned to the line's end: quadratic, 16 KB took 1.15 s)
+_STRINGS = re.compile(r'"""(?:[^"\\]|\\[\s\S]|"(?!""))*+(?:"""|\\?\Z)|\'\'\'[\s\S]*?(?:\'\'\'|\Z)'
+                      r'|"(?:[^"\\\n]|\\.)*+(?:"|\\?$)|\'[^\'\n]*+(?:\'|$)|#[^\n]*+', re.M)
 _LONG_KEY = re.compile(r'(?<![\w"+-])[\w"+-]++(?:[ \t]*+\.[ \t]*+[\w"+-]++){%d}' % MAX_KEY_PARTS)
 
 
 def _check_shape(text: str, label: str) -> None:
     """Refuse text whose keys or nesting would make the TOML parser blow up, before parsing."""
-    bare = _STRINGS.sub(lambda m: "" if m.group().startswith("#") else '""', text)
+    # a comment becomes "" too: a token without a dot cannot lengthen a key, and one replacement
+    # text keeps the substitution in C (a Python callback per match: 0.26 s of 1 MB of hostile lines)
+    bare = _STRINGS.sub('""', text)
     problems = []
     if _LONG_KEY.search(bare):
         problems.append(f"a key has more than {MAX_KEY_PARTS} dotted parts; recipes nest at most a few")
@@ -208,9 +222,9 @@ def _check_shape(text: str, label: str) -> None:
         raise RecipeError(problems, label)
 
 
-def _validate(data: dict, text: str | None, label: str, base: Path | None = None) -> Recipe:
-    """The checked recipe; ``base`` is the directory a relative points.file is found in (None: the
-    working directory, for a recipe given as a dict)."""
+def _validate(data: dict, text: str | None, label: str, base: Path | None = None, allow_read=()) -> Recipe:
+    """The checked recipe; ``base`` is the directory a relative points.file is found in and must lie
+    in (None: the working directory, for a recipe given as a dict), or in a folder of ``allow_read``."""
     problems: list[str] = []
     for key in data:
         if key not in TOP_KEYS:
@@ -237,7 +251,7 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
     physical = scen.physical_switch is None or scen.physical_switch in params
     mode = "physical" if physical else "normalised"
     values: dict[str, Any] = {}
-    points_raw, source = _points_table(data, declared, params, scen, base, problems)
+    points_raw, source = _points_table(data, declared, params, scen, base, problems, physical, allow_read)
     # from the lengths (or the sample's n), before any parsing or drawing
     n_points = source["sample"]["n"] if "sample" in source else _points_size(points_raw, _said(problems, source))
     rejected = _sweep_sizes(params, declared, problems, n_points)   # before any sweep is expanded
@@ -407,7 +421,7 @@ class CheckValues(dict):
 
 
 def _points_table(data: dict, declared: dict, params: dict, scen: Scenario, base: Path | None,
-                  problems: list[str]) -> tuple[dict, dict]:
+                  problems: list[str], physical: bool = False, allow_read=()) -> tuple[dict, dict]:
     """The [points] columns as given ({} if none) and their source for the canonical recipe: {} for
     inline columns, {"file", "file_sha256"} for a file, {"sample": spec} for a sample (drawn later,
     once its size has passed the bounds; the columns are then {})."""
@@ -433,10 +447,31 @@ def _points_table(data: dict, declared: dict, params: dict, scen: Scenario, base
                                 f"sample; it also has {', '.join(map(show, others))}: put every column in one of them")
                 return {}, {}
             if key == "file":
-                return read_points_file(table["file"], base, problems)
+                columns, source = read_points_file(table["file"], base, problems, allow_read)
+                return _converted(columns, declared, physical, _said(problems, source)), source
             spec = _sample_spec(table["sample"], declared, params, scen, problems)
             return {}, ({"sample": spec} if spec else {})
     return dict(table), {}
+
+
+def _converted(columns, declared: dict, physical: bool, problems) -> dict:
+    """A points file's columns by name, each in its parameter's unit for the recipe's mode: a unit
+    the file gives (``x[mm]``, a NetCDF ``units`` attribute) is converted by `units.UNITS`, or refused."""
+    out = {}
+    for col in columns:
+        par = declared.get(col.name)
+        if par is None or col.unit is None:
+            out[col.name] = col.values
+            continue
+        target = par.units_in(physical)
+        f = unit_factor(col.unit, target)
+        if f is None:
+            problems.append(f"column {col.name!r}: unit {show_unit(col.unit)} cannot be converted to {col.name}'s unit "
+                            f"in the recipe's {'physical' if physical else 'normalised'} mode ({target!r}); allowed: "
+                            f"{', '.join(allowed_units(target))}")
+            continue
+        out[col.name] = col.values if f == 1.0 else np.asarray(col.values, dtype=np.float64) * f
+    return out
 
 
 class _Named:
