@@ -15,25 +15,28 @@ if TYPE_CHECKING:
     import xarray as xr
 
 
-def generate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None) -> xr.Dataset:
+def generate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None, *, allow_read=()) -> xr.Dataset:
     """The recipe's dataset: lazy (dask-backed), CF-annotated; computed when written or `.compute()`d.
 
     ``recipe`` is a TOML path or a dict with the same keys; ``chunks`` overrides the recipe's
-    chunk sizes per dimension.
+    chunk sizes per dimension. A ``[points] file`` is read only from inside the recipe's folder (a
+    dict's: the working directory), symbolic links resolved, or from inside a folder listed in
+    ``allow_read``.
     """
     from .build import build
     from .recipe import load
 
-    return build(load(recipe), chunks)
+    return build(load(recipe, allow_read), chunks)
 
 
-def estimate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None) -> dict:
+def estimate(recipe: str | Path | Mapping, chunks: dict[str, int] | None = None, *, allow_read=()) -> dict:
     """What running ``recipe`` will produce, before anything large is computed: ``dims``, ``points``,
-    ``bytes``, ``chunks`` and ``seconds`` (extrapolated from evaluating a small leading slice)."""
+    ``bytes``, ``chunks`` and ``seconds`` (extrapolated from evaluating a small leading slice);
+    ``allow_read`` as for `generate`."""
     from .build import estimate as _estimate
     from .recipe import load
 
-    return _estimate(load(recipe), chunks)
+    return _estimate(load(recipe, allow_read), chunks)
 
 
 def scenarios() -> dict[str, str]:

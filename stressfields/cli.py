@@ -157,6 +157,9 @@ def _parser() -> argparse.ArgumentParser:
                      "say why")
     run.add_argument("--dry-run", action="store_true", help="print dimensions, points, output size and an "
                      "estimated time (from a small sample), and write nothing")
+    run.add_argument("--no-space-check", dest="space_check", action="store_false",
+                     help="start even if the output's estimated size exceeds the free space of its file system")
+    _allow_read_option(run)
     run.set_defaults(func=_run)
 
     lst = sub.add_parser("list", help="list the scenarios")
@@ -168,6 +171,7 @@ def _parser() -> argparse.ArgumentParser:
 
     val = sub.add_parser("validate", help="check recipes without computing anything")
     val.add_argument("recipes", nargs="+", type=Path)
+    _allow_read_option(val)
     val.set_defaults(func=_validate)
 
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
@@ -222,34 +226,25 @@ def _parser() -> argparse.ArgumentParser:
     return p
 
 
+def _allow_read_option(parser) -> None:
+    parser.add_argument("--allow-read", action="append", default=[], type=Path, metavar="DIR",
+                        help="also read [points] files from inside DIR (repeatable); by default a points file "
+                        "must lie inside its recipe's folder, symbolic links resolved")
+
+
 def _compare(args) -> int:
-    """The comparison's three files in REPORT_DIR; the targets are checked before anything is computed."""
-    from .comparison import compare, plot_comparison, report_markdown, summary
-    from .writers import check_target, write
+    """The comparison's report folder, published whole (`comparison.write_report`); the folder is
+    checked before anything is computed."""
+    from .comparison import check_report_folder, compare, summary, write_report
 
     out = args.report_dir
-    nc, md, png = out / "comparison.nc", out / "report.md", out / "comparison.png"
-    if out.is_dir():
-        check_target(nc, overwrite=args.overwrite)
-        for path in (md, png):
-            if os.path.lexists(path) and not args.overwrite:
-                raise UsageError(f"{path} exists; give --overwrite to replace it")
-    else:
-        _check_out_dir(out, "-o/--output")
+    check_report_folder(out, overwrite=args.overwrite)
     plotting = _has_matplotlib()
     ds = compare(args.recipe, args.user_data, tolerance=args.tolerance, variables=args.variables)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise OutputError(f"-o/--output {out}: {exc.strerror or exc}") from None
-    write(ds, nc, overwrite=args.overwrite)
-    note = ("Quick look: `comparison.png`." if plotting else
-            "No comparison.png: matplotlib is not installed (pip install 'stressfields[plot]').")
-    if plotting:
-        plot_comparison(ds, png)
-    else:
-        print(f"note: {note}", file=sys.stderr)
-    _write_text(md, report_markdown(ds, str(args.recipe), note))
+    if not plotting:
+        print("note: no comparison.png: matplotlib is not installed (pip install 'stressfields[plot]')",
+              file=sys.stderr)
+    write_report(ds, out, str(args.recipe), overwrite=args.overwrite, plot=plotting)
     for name, s in summary(ds).items():
         node = "".join(f"{k[6:]} {v}, " for k, v in s.items() if k in ("worst_node", "worst_node_id", "worst_id"))
         print(f"{name:12s} max |diff|/scale {s['max_abs_difference_over_scale']:.3e} at point {s['worst_point']} "
@@ -365,7 +360,7 @@ def _keep_freed_memory() -> None:
 def _run(args) -> int:
     from .build import build, check_chunks, default_chunks, estimate
     from .recipe import load
-    from .writers import check_name, check_target, format_for, write
+    from .writers import check_name, check_space, check_target, format_for, output_options, space_needed, write
 
     if args.output and len(args.recipes) > 1:
         raise UsageError("-o/--output takes one recipe; use --out-dir for several")
@@ -375,7 +370,7 @@ def _run(args) -> int:
     out_dir_ready = args.output is not None or _check_out_dir(args.out_dir)
     jobs = []
     for path in args.recipes:      # validate everything before computing anything
-        recipe = load(path)
+        recipe = load(path, allow_read=args.allow_read)
         bad = set(chunks) - set(recipe.dims)
         if bad:
             raise UsageError(f"--chunks: {', '.join(sorted(bad))} is not a swept dimension of {path} "
@@ -394,9 +389,11 @@ def _run(args) -> int:
             check_target(target, overwrite=args.overwrite, resume=args.resume, parts=args.parts)
         else:
             check_name(target, _existing_ancestor(args.out_dir))
-        jobs.append((path, recipe, target))
+        given = {"dtype": args.dtype, "compression": args.compression, "nonfinite": args.nonfinite}
+        storage = {**recipe.storage, **{k: v for k, v in given.items() if v is not None}}
+        jobs.append((path, recipe, target, storage))
     if args.dry_run:
-        for path, recipe, target in jobs:
+        for path, recipe, target, _ in jobs:
             e = estimate(recipe, chunks)
             dims = " x ".join(f"{d}={n}" for d, n in e["dims"].items()) or "scalar"
             print(f"{path} -> {target}\n  scenario {recipe.scenario.name}: {dims} = {e['points']:,} points; "
@@ -404,6 +401,11 @@ def _run(args) -> int:
                   f"chunks {e['chunks']}; estimated {e['seconds']:,.1f} s here (from {e['sample_points']:,} "
                   "points)")
         return 0
+    # every dataset (lazy) before any work: the free space is checked against all outputs at once
+    datasets = [build(recipe, chunks) for _, recipe, _, _ in jobs]
+    if args.space_check:
+        check_space([(target, space_needed(ds, target, output_options(**storage), args.resume))
+                     for ds, (_, _, target, storage) in zip(datasets, jobs)])
     _keep_freed_memory()
     scheduler, client = _scheduler(args.scheduler)
     local = contextlib.ExitStack()
@@ -420,18 +422,15 @@ def _run(args) -> int:
                 args.out_dir.mkdir(parents=True, exist_ok=True)
             except OSError as exc:
                 raise OutputError(f"--out-dir {args.out_dir}: {exc.strerror or exc}") from None
-        for path, recipe, target in jobs:
-            ds = build(recipe, chunks)
+        for ds, (path, recipe, target, storage) in zip(datasets, jobs):
             if not args.quiet:
                 dims = " x ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "scalar"
                 print(f"{path} -> {target}  [{recipe.scenario.name}: {dims}, "
                       f"{len(ds.data_vars)} variables]", file=sys.stderr)
             parts = args.parts or (recipe.size > PARTS_ABOVE and format_for(target).resumable)
             try:
-                given = {"dtype": args.dtype, "compression": args.compression, "nonfinite": args.nonfinite}
-                storage = {**recipe.storage, **{k: v for k, v in given.items() if v is not None}}
                 write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=not args.quiet,
-                      scheduler=scheduler, **storage)
+                      scheduler=scheduler, space_check=args.space_check, **storage)
             except Exception as exc:
                 if client is None or not _cluster_failure(exc, client):
                     raise
@@ -589,7 +588,7 @@ def _validate(args) -> int:
     failed = 0
     for path in args.recipes:
         try:
-            recipe = load(path)
+            recipe = load(path, allow_read=args.allow_read)
         except RecipeError as exc:
             print(str(exc), file=sys.stderr)
             failed += 1

@@ -11,7 +11,9 @@ A column named like one of the scenario's parameters (``x``, ``y``, ``z``, ...) 
 the nodes, a column named like a float variable (``sigma_xx``, ...) a value to compare. Units go in
 brackets (``x[mm]``, ``sigma_xx[MPa]``); a column without them is in the scenario's declared unit
 for the recipe's mode. Units are converted to the recipe's ("1" in normalised mode, SI in physical
-mode) by the explicit table ``UNITS``; nothing is guessed.
+mode) by the explicit table ``units.UNITS``, the one `[points]` files use; nothing is guessed. Files
+are read by the readers of `[points]` files (`pointfiles`): their size, and the size their columns
+decode to, are checked before anything is decoded, and no message quotes their content.
 
 The reference is the recipe with the coordinate columns as its ``[points]`` table (the recipe's own
 values of those parameters and its ``[points]`` are replaced), so it is evaluated at the nodes and
@@ -30,7 +32,7 @@ from __future__ import annotations
 import json
 import math
 import os
-import re
+import shutil
 import stat
 import tomllib
 from dataclasses import dataclass
@@ -40,31 +42,21 @@ from typing import Mapping
 import numpy as np
 import xarray as xr
 
-from .pointfiles import FileProblem, csv_columns
+from .errors import OutputError, name_problem
+from .pointfiles import MAX_POINTS_FILE_BYTES, Column, FileProblem, csv_columns, file_bytes, nc_columns
 from .recipe import MAX_RECIPE_BYTES, POINT, RecipeError, load
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Scenario
+from .units import LABEL_RULE, UNITS, allowed as allowed_units, factor as unit_factor, parse_label, show_unit
 
-#: unit -> (the SI unit it converts to, factor): the only conversions made
-UNITS = {"Pa": ("Pa", 1.0), "kPa": ("Pa", 1e3), "MPa": ("Pa", 1e6), "GPa": ("Pa", 1e9),
-         "m": ("m", 1.0), "mm": ("m", 1e-3), "um": ("m", 1e-6), "N": ("N", 1.0), "1": ("1", 1.0)}
 #: CSV files read: 200 MB holds ~1e7 nodes of a few columns (the most a recipe's [points] takes)
 MAX_CSV_BYTES = 200_000_000
 #: names of the identity column of an FE export: kept as a coordinate, never compared
 ID_COLUMNS = ("node", "node_id", "id")
-_HEADER = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*(?:\[\s*([^\]]*?)\s*\])?\s*$")
 
 
 class CompareError(ValueError):
     """Bad user data or a recipe that cannot be compared; the message is one line."""
-
-
-@dataclass(frozen=True)
-class Column:
-    name: str
-    label: str              # as given (the CSV header, the NetCDF variable name)
-    unit: str | None        # as given; None: the declared unit
-    values: np.ndarray      # float64, as given (not converted)
 
 
 def compare(recipe: str | Path | Mapping, user_data: str | Path | xr.Dataset | Mapping, *,
@@ -114,6 +106,9 @@ def _recipe(recipe) -> tuple[_Base, dict]:
         data, text, label = dict(recipe), json.dumps(dict(recipe), default=str, sort_keys=True), "recipe"
     else:
         label = str(recipe)
+        why = name_problem(label)
+        if why is not None:
+            raise CompareError(f"{ascii(label)}: cannot read the recipe ({why})")
         path = Path(recipe)
         try:
             if not stat.S_ISREG(os.stat(path).st_mode) or os.stat(path).st_size > MAX_RECIPE_BYTES:
@@ -148,40 +143,34 @@ def read_user_data(user_data) -> tuple[list[Column], str]:
         return [_header_column(str(k), np.asarray(v), "the user data") for k, v in user_data.items()], "the user data"
     path = Path(user_data)
     source = str(path)
+    why = name_problem(source)
+    if why is not None:
+        raise CompareError(f"{ascii(source)}: cannot read it ({why})")
     try:
-        info = os.stat(path)
+        # a NetCDF file (classic or HDF5) by its first bytes; anything else is read as a CSV
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+        try:
+            if not stat.S_ISREG(os.fstat(fd).st_mode):
+                raise CompareError(f"{source}: not a regular file (give a CSV or NetCDF file)")
+            netcdf = os.read(fd, 4).startswith((b"CDF", b"\x89HDF"))
+        finally:
+            os.close(fd)
     except OSError as exc:
         raise CompareError(f"{source}: cannot read it ({exc.strerror})") from None
-    if not stat.S_ISREG(info.st_mode):
-        raise CompareError(f"{source}: not a regular file (give a CSV or NetCDF file)")
-    with open(path, "rb") as handle:
-        magic = handle.read(4)
-    if magic.startswith((b"CDF", b"\x89HDF")):
-        return _netcdf_columns(path, source), source
-    if info.st_size > MAX_CSV_BYTES:
-        raise CompareError(f"{source}: {info.st_size:,} bytes; a CSV file of nodes has at most {MAX_CSV_BYTES:,}")
-    return _csv_columns(path, source), source
-
-
-def _csv_columns(path: Path, source: str) -> list[Column]:
-    """The columns of a CSV (the reader of [points] files: one fast pass, the line and column of a
-    bad value named), each with the unit its header gives."""
     try:
-        columns = csv_columns(path.read_bytes())
+        raw = file_bytes(path, source, MAX_POINTS_FILE_BYTES if netcdf else MAX_CSV_BYTES)
+        columns = (nc_columns(raw, skip_scalars=True, drop_index=True, kept_index=ID_COLUMNS) if netcdf
+                   else csv_columns(raw))
     except FileProblem as exc:
         raise CompareError(f"{source}: {exc}") from None
-    except OSError as exc:
-        raise CompareError(f"{source}: cannot read it ({exc.strerror})") from None
-    return [_header_column(h, v, source) for h, v in columns.items()]
+    return [Column(c.name, c.label, c.unit, _numbers(c.values, c.label, source)) for c in columns], source
 
 
 def _header_column(header: str, values: np.ndarray, source: str) -> Column:
-    match = _HEADER.match(header)
-    if not match:
-        raise CompareError(f"{source}: column header {header!r} must be a name with an optional unit in "
-                           "brackets, e.g. sigma_xx[MPa]")
-    name, unit = match.group(1), match.group(2)
-    return Column(name, header.strip(), unit, _numbers(values, header.strip(), source))
+    parsed = parse_label(header)
+    if parsed is None:
+        raise CompareError(f"{source}: a column header is not {LABEL_RULE}, e.g. sigma_xx[MPa]")
+    return Column(parsed[0], header.strip(), parsed[1], _numbers(values, header.strip(), source))
 
 
 def _numbers(values, label: str, source: str) -> np.ndarray:
@@ -189,17 +178,6 @@ def _numbers(values, label: str, source: str) -> np.ndarray:
     if arr.ndim != 1 or arr.dtype.kind not in "iuf":
         raise CompareError(f"{source}, column {label!r}: must be one column of numbers")
     return arr.astype(np.float64)
-
-
-def _netcdf_columns(path: Path, source: str) -> list[Column]:
-    try:
-        with xr.open_dataset(path, decode_times=False, decode_timedelta=False) as ds:
-            return _dataset_columns(ds.load(), source)
-    except CompareError:
-        raise
-    except Exception as exc:        # any reader's failure on a damaged or foreign file
-        raise CompareError(f"{source}: not a readable NetCDF file ({type(exc).__name__}: "
-                           f"{' '.join(str(exc).split())[:200]})") from None
 
 
 def _dataset_columns(ds: xr.Dataset, source: str) -> list[Column]:
@@ -277,15 +255,13 @@ def _factor(scen: Scenario, col: Column, physical: bool, source: str) -> float:
     """The factor from the column's unit to the recipe's unit for it (UNITS; refused otherwise)."""
     decl = scen.parameter(col.name) if col.name in {p.name for p in scen.parameters} else scen.variable(col.name)
     target = decl.units_in(physical)
-    if col.unit is None or col.unit == target:
-        return 1.0
-    known = UNITS.get(col.unit)
-    if known is not None and known[0] == target:
-        return known[1]
-    allowed = [target] + [u for u, (base, _) in UNITS.items() if base == target and u != target]
+    f = unit_factor(col.unit, target)
+    if f is not None:
+        return f
     mode = "physical" if physical else "normalised"
-    raise CompareError(f"{source}, column {col.label!r}: unit {col.unit!r} cannot be converted to {col.name}'s "
-                       f"unit in the recipe's {mode} mode ({target!r}); allowed: {', '.join(allowed)}")
+    raise CompareError(f"{source}, column {col.label!r}: unit {show_unit(col.unit)} cannot be converted to "
+                       f"{col.name}'s unit in the recipe's {mode} mode ({target!r}); allowed: "
+                       f"{', '.join(allowed_units(target))}")
 
 
 # --- the reference ---------------------------------------------------------------------------------
@@ -528,6 +504,83 @@ def report_markdown(ds: xr.Dataset, recipe_label: str, png_note: str) -> str:
     return "\n".join(lines)
 
 
+#: what a report folder holds (`write_report`); a folder holding anything else is never replaced
+REPORT_FILES = ("comparison.nc", "comparison.png", "report.md")
+
+
+def check_report_folder(folder: Path, *, overwrite: bool = False) -> Path:
+    """The one check of a report folder before anything is computed: it does not exist (its parent
+    can take it), is an empty directory, or, with ``overwrite``, a previous report (nothing but
+    REPORT_FILES). Raises OutputError naming the problem."""
+    from .writers import check_name
+
+    folder = Path(folder)
+    parent = folder.parent if str(folder.parent) else Path(".")
+    if os.path.islink(folder):
+        raise OutputError(f"{folder} is a symbolic link; give the report folder itself")
+    if os.path.lexists(folder):
+        if not folder.is_dir():
+            raise OutputError(f"{folder} exists and is not a directory; a report is a folder")
+        entries = os.listdir(folder)
+        others = [e for e in entries if e not in REPORT_FILES]
+        if others:
+            raise OutputError(f"{folder} holds {len(others)} entr{'y' if len(others) == 1 else 'ies'} that "
+                              f"{'is' if len(others) == 1 else 'are'} not of a report (e.g. {others[0]!r}); "
+                              "refusing to replace it: give a new or empty folder")
+        if entries and not overwrite:
+            raise OutputError(f"{folder} holds a report; refusing to overwrite it (use --overwrite)")
+    elif not parent.is_dir():
+        raise OutputError(f"cannot write {folder}: {parent} is not a directory or does not exist")
+    if not os.access(parent, os.W_OK | os.X_OK):
+        raise OutputError(f"cannot write {folder}: {parent} is not writable (read-only or no permission)")
+    check_name(folder, parent)
+    return folder
+
+
+def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *, overwrite: bool = False,
+                 plot: bool = True) -> Path:
+    """Publish the comparison ``ds`` as the folder ``folder``: comparison.nc, report.md and (with
+    ``plot``) comparison.png, built completely in a temporary folder beside it
+    (``.NAME.HOST-PID.RANDOM.partial``, `netcdf.temporary`) and renamed into place when complete. On
+    any error or interrupt (Ctrl-C, SIGTERM, SIGHUP) the temporary folder is removed and nothing is
+    left; I/O failures (a full disk) are one OutputError. A folder a killed run left is removed by
+    the next (`netcdf.clean_stale`). The folder replaced by ``overwrite`` is moved aside in one rename
+    and removed after, as for a Zarr store."""
+    from .netcdf import _umask, clean_stale, output_error, temporary
+    from .writers import target_lock, write
+    from .zarrstore import publish_folder
+
+    folder = check_report_folder(Path(folder), overwrite=overwrite)
+    parent = folder.parent if str(folder.parent) else Path(".")
+    note = ("Quick look: `comparison.png`." if plot else
+            "No comparison.png: matplotlib is not installed (pip install 'stressfields[plot]').")
+    with target_lock(folder):
+        clean_stale(folder)
+        tmp = temporary(folder, ".partial")
+        try:
+            write(ds, tmp / "comparison.nc")
+            if plot:
+                plot_comparison(ds, tmp / "comparison.png")
+            with open(tmp / "report.md", "w", encoding="utf-8", errors="backslashreplace") as fh:
+                fh.write(report_markdown(ds, recipe_label, note))
+                fh.flush()
+                os.fsync(fh.fileno())
+            os.chmod(tmp, 0o777 & ~_umask())         # mkdtemp makes 0700; publish like any new folder
+            fd = os.open(tmp, os.O_RDONLY)
+            try:
+                os.fsync(fd)                        # the names of the files, before the folder's own
+            finally:
+                os.close(fd)
+            publish_folder(tmp, folder, overwrite=True)     # checked above, under the lock
+        except BaseException as exc:
+            shutil.rmtree(tmp, ignore_errors=True)
+            error = output_error(exc, folder, parent)
+            if error is not None:
+                raise error from None
+            raise
+    return folder
+
+
 def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
     """comparison.png: per variable the difference / S along the one coordinate that varies (points
     on a line), or a map over two varying coordinates coloured by |difference| / S; the worst point ringed."""
@@ -545,15 +598,13 @@ def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
         _panel(ax, ds, name, varying)
     for ax in list(axes.flat)[len(names):]:
         ax.set_visible(False)
-    fig.suptitle(ds.attrs["title"], fontsize=8, wrap=True)
+    # the title holds the file names and the recipe's title as given: plain text, never mathtext
+    fig.suptitle(ds.attrs["title"], fontsize=8, wrap=True, parse_math=False)
     fig.tight_layout()
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp.png")
     try:
-        fig.savefig(tmp, dpi=90)
-        os.replace(tmp, path)
+        fig.savefig(path, dpi=90)       # into the report's temporary folder (`write_report`)
     finally:
         plt.close(fig)
-        tmp.unlink(missing_ok=True)
     return path
 
 

@@ -1,5 +1,6 @@
 """The errors a user can act on (the command line prints them in one line and exits 2), and how
 their messages show a value."""
+import os
 import reprlib
 
 _SHOW = reprlib.Repr()
@@ -13,3 +14,18 @@ def show(value) -> str:
 
 class OutputError(OSError):
     """The target cannot be written (exists, unwritable, disk full); nothing was left behind."""
+
+
+def name_problem(name: str) -> str | None:
+    """Why a file name given as text cannot be used here (None if it can): a NUL byte, or a name
+    that is not UTF-8 text (a command-line argument of other bytes arrives with lone surrogates,
+    which neither the NetCDF library nor a UTF-8 terminal can take). Messages then show the name
+    with ascii()."""
+    if "\0" in name:
+        return "the name holds a NUL byte (\\0); a file name cannot"
+    try:
+        name.encode("utf-8")
+        os.fsencode(name)
+    except UnicodeEncodeError:
+        return "the name is not UTF-8 text; rename the file"
+    return None

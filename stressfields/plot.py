@@ -55,7 +55,8 @@ def quicklook(path: str | Path, recipe) -> Path:
     path = Path(path)
     with open_dataset(path) as ds:          # choice dimensions labelled by name, for the legends
         fig = _figure(plt, ds, recipe)
-        fig.suptitle(recipe.title, fontsize=9, wrap=True)
+        # the recipe's title as written: plain text ("$\foo$" is no mathtext to parse and fail on)
+        fig.suptitle(recipe.title, fontsize=9, wrap=True, parse_math=False)
         fig.tight_layout()
         png = path.with_suffix(".png")
         fig.savefig(png, dpi=90)

@@ -20,7 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .errors import show
+from .errors import name_problem, show
 from .units import LABEL_RULE, parse_label, show_unit
 
 #: values of one sweep: its coordinate takes 80 MB and is expanded and checked in ~0.2 s
@@ -42,19 +42,6 @@ POINTS_FILE_TYPES = (".csv", ".npy", ".npz", ".nc")
 def file_label(name: str) -> str:
     """The file name as given, whole (a path is rarely long; show() would cut it at 60 characters)."""
     return repr(name) if len(name) <= 4096 else show(name)
-
-
-def name_problem(name: str) -> str | None:
-    """Why a file name cannot be opened here (None if it can): a NUL byte, or characters the file
-    system's encoding cannot hold (a name given as text with lone surrogates)."""
-    if "\0" in name:
-        return "the name holds a NUL byte (\\0); a file name cannot"
-    try:
-        os.fsencode(name)
-        name.encode("utf-8", "surrogateescape")
-    except UnicodeEncodeError:
-        return "the name holds characters that cannot be encoded as a file name"
-    return None
 
 
 @dataclass(frozen=True)
@@ -368,12 +355,12 @@ def _npz_columns(raw: bytes) -> list[Column]:
     return out
 
 
-def nc_columns(raw: bytes, *, skip_scalars: bool = False, index: str = "keep") -> list[Column]:
+def nc_columns(raw: bytes, *, skip_scalars: bool = False, drop_index: bool = False, kept_index=()) -> list[Column]:
     """A NetCDF file (classic or NetCDF4): the variables of the root group are columns, 1-D along one
     dimension, with the unit of their ``units`` attribute; fill values become NaN (refused as not
     finite, with their row). ``skip_scalars``: leave 0-D variables (metadata) out instead of refusing
-    them; ``index``: the dimension's own coordinate variable is kept, or dropped ("drop"). The size
-    the columns decode to is checked before a value is read."""
+    them; ``drop_index``: leave the dimension's own coordinate variable out unless it is named in
+    ``kept_index``. The size the columns decode to is checked before a value is read."""
     import netCDF4                              # the writer's dependency: only needed here
 
     try:
@@ -396,7 +383,7 @@ def nc_columns(raw: bytes, *, skip_scalars: bool = False, index: str = "keep") -
         rows = len(ds.dimensions[dim])
         _check_rows(rows)
         kept = [(label, item, var) for label, item, var in zip(variables, parsed, variables.values())
-                if not (index == "drop" and label == dim)]
+                if not (drop_index and label == dim and label not in kept_index)]
         _check_decoded(rows, len(kept))
         out = []
         for label, (name, bracket), var in kept:

@@ -48,8 +48,8 @@ from typing import Any, Collection, Mapping
 
 import numpy as np
 
-from .errors import show
-from .pointfiles import MAX_SWEEP, file_label, name_problem, read_points_file
+from .errors import name_problem, show
+from .pointfiles import MAX_SWEEP, file_label, read_points_file
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
 from .options import output_option_problems

@@ -29,7 +29,7 @@ import numpy as np
 import xarray as xr
 
 from . import netcdf, zarrstore
-from .errors import OutputError
+from .errors import OutputError, name_problem
 from .options import DTYPES, NONFINITE, output_option_problems  # noqa: F401 (re-exported)
 
 
@@ -222,7 +222,11 @@ def check_target(target: str | os.PathLike, *, overwrite: bool = False, resume: 
 
 
 def check_name(target: Path, folder: Path) -> None:
-    """The target's name leaves room for its temporaries (`netcdf.TEMP_OVERHEAD` bytes more)."""
+    """The target's name is UTF-8 text without NUL (`errors.name_problem`: the NetCDF library takes
+    UTF-8 names) and leaves room for its temporaries (`netcdf.TEMP_OVERHEAD` bytes more)."""
+    why = name_problem(str(target))
+    if why is not None:
+        raise OutputError(f"cannot write {ascii(str(target))}: {why}")
     try:
         limit = os.pathconf(folder, "PC_NAME_MAX")
     except (OSError, ValueError):
@@ -308,21 +312,75 @@ def _unlink(path: Path) -> None:
         pass
 
 
+def stored_bytes(ds: xr.Dataset, options: OutputOptions | None = None) -> int:
+    """The bytes the values of ``ds`` take when stored with ``options`` (`prepare`; uncompressed, so
+    an upper bound for compressed output): what a run must find free before it starts. From the
+    shapes and dtypes alone, nothing computed."""
+    prepared = prepare(ds, options)
+    return int(sum(v.size * v.dtype.itemsize for v in prepared.variables.values()))
+
+
+def check_space(needs: list[tuple[Path, int]]) -> None:
+    """Refuse, before anything is written, targets whose file system has less free space than they
+    need together: ``needs`` is (target, bytes) per output (`stored_bytes`), summed per file system
+    (of the nearest existing folder of each target). A target replaced with overwrite still needs
+    its full size: the old file stays until the new one is complete. Raises OutputError naming the
+    bytes needed and free."""
+    groups: dict[int, list] = {}
+    for target, need in needs:
+        folder = Path(target).parent if str(Path(target).parent) else Path(".")
+        folder = Path(os.path.abspath(folder))
+        while not folder.is_dir() and folder != folder.parent:
+            folder = folder.parent
+        try:
+            device = os.stat(folder).st_dev
+        except OSError:
+            continue            # said by the target checks
+        group = groups.setdefault(device, [folder, 0, []])
+        group[1] += need
+        group[2].append(str(target))
+    for folder, need, targets in groups.values():
+        try:
+            st = os.statvfs(folder)
+        except OSError:
+            continue            # no figure to check against: the write itself reports a full disk
+        free = st.f_bavail * st.f_frsize
+        if need > free:
+            raise OutputError(f"{', '.join(targets)}: needs about {need:,} bytes ({need / 1e9:,.3g} GB, uncompressed) "
+                              f"but {folder} has {free:,} bytes ({free / 1e9:,.3g} GB) free; free some space or write "
+                              "elsewhere (--no-space-check, space_check=False: start anyway)")
+
+
+def space_needed(ds: xr.Dataset, target: Path, options: OutputOptions | None = None, resume: bool = False) -> int:
+    """`stored_bytes`, less what the parts of an interrupted run already hold on disk when resuming."""
+    held = 0
+    if resume:
+        try:
+            held = os.stat(parts_dir(Path(target)) / "data.nc").st_blocks * 512
+        except (OSError, AttributeError):
+            pass
+    return max(0, stored_bytes(ds, options) - held)
+
+
 def write(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False, parts: bool = False,
           resume: bool = False, progress: bool = False, scheduler=None, dtype: str = "float64",
-          compression: int | None = None, nonfinite: str = "keep") -> Path:
+          compression: int | None = None, nonfinite: str = "keep", space_check: bool = True) -> Path:
     """Compute ``ds`` chunk by chunk and write it to ``path`` in the format its suffix names
     (``.nc``: NetCDF, ``.zarr``: Zarr), atomically, with its content hash.
 
     ``parts=True`` writes in resumable parts along the first dimension; ``resume=True`` finishes an
     interrupted parts run from its verified parts. ``scheduler`` is passed to dask (None: threads).
     ``dtype``, ``compression`` and ``nonfinite`` are the output options (see `OutputOptions`).
+    ``space_check``: refuse, before writing anything, a dataset larger than the free space of the
+    target's file system (`check_space`; a resumed run counts what its parts already hold).
     One run at a time writes a target (`target_lock`); of two runs onto one new name exactly one
     publishes, the other raises OutputError.
     """
     options = output_options(dtype, compression, nonfinite)
     fmt = format_for(path)
     target = check_target(path, overwrite=overwrite, resume=resume, parts=parts)
+    if space_check:
+        check_space([(target, space_needed(ds, target, options, resume))])
     ds = prepare(ds, options)
     with target_lock(target):
         if parts or resume:
@@ -363,6 +421,6 @@ def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = Fals
         return FORMATS["netcdf"].write(ds, target, progress=progress, scheduler=scheduler, overwrite=overwrite)
 
 
-__all__ = ["FORMATS", "Format", "OPTIONS_ATTR", "OutputError", "OutputOptions", "Writer", "check_target",
-           "encode_choices", "export", "format_for", "output_option_problems", "output_options", "parts_dir",
-           "prepare", "target_lock", "to_netcdf", "write"]
+__all__ = ["FORMATS", "Format", "OPTIONS_ATTR", "OutputError", "OutputOptions", "Writer", "check_space",
+           "check_target", "encode_choices", "export", "format_for", "output_option_problems", "output_options",
+           "parts_dir", "prepare", "space_needed", "stored_bytes", "target_lock", "to_netcdf", "write"]

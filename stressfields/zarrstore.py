@@ -51,7 +51,7 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
             group = zarr.open_group(partial, mode="r+")
             group.attrs[ATTR] = digest
             zarr.consolidate_metadata(partial)
-        _publish(partial, target, overwrite)
+        publish_folder(partial, target, overwrite)
     except OutputError:
         shutil.rmtree(partial, ignore_errors=True)
         raise
@@ -115,10 +115,11 @@ def _ordered(ds: xr.Dataset, order: list[str]) -> xr.Dataset:
     return out
 
 
-def _publish(partial: Path, target: Path, overwrite: bool) -> None:
-    """Rename the complete store onto ``target``. A rename replaces an empty directory, so the name is
-    checked first, under the run lock. The store replaced by ``overwrite`` is moved aside in one rename
-    and removed after: the target is always either the old store or the new one."""
+def publish_folder(partial: Path, target: Path, overwrite: bool) -> None:
+    """Rename the complete folder (a store, `comparison.write_report`'s report) onto ``target``. A
+    rename replaces an empty directory, so the name is checked first, under the run lock. The folder
+    replaced by ``overwrite`` is moved aside in one rename and removed after: the target is always
+    either the old folder or the new one."""
     if not os.path.lexists(target):
         os.rename(partial, target)
         return

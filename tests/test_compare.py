@@ -177,13 +177,13 @@ GOOD = "x[mm],y[mm],z[mm],sigma_xx[MPa]\n0.01,0.02,0.0,-900\n0.03,0.0,0.05,-700\
     (GOOD.replace("sigma_xx[MPa]", "sigma_xx[psi]"), ["unit 'psi'", "allowed: Pa, kPa, MPa, GPa"]),
     (GOOD.replace("x[mm]", "x[MPa]"), ["unit 'MPa'", "allowed: m, mm, um"]),
     (GOOD.replace("-700", "nan"), ["'sigma_xx[MPa]'", "nan at data row 1"]),
-    (GOOD.replace("-700", "abc"), ["line 3", "'abc' is not a number"]),
+    (GOOD.replace("-700", "abc"), ["line 3, column 'sigma_xx': not a number"]),
     (GOOD.replace("-700", "-700,5"), ["line 3", "5 values but the header names 4 columns"]),
     (GOOD.replace("sigma_xx", "sigma_foo"), ["'sigma_foo[MPa]' is unknown"]),
     (GOOD.replace("sigma_xx", "validity"), ["a flag"]),
     (GOOD.replace("0.0,0.05", "0.0,-0.05"), ["points.z[1] = -5e-05", "[0, 1000000]"]),
-    ("x[mm],x[m],sigma_xx\n0,0,1\n", ["name the same 'x'"]),
-    ("", ["no header"]),
+    ("x[mm],x[m],sigma_xx\n0,0,1\n", ["'x' appears twice"]),
+    ("", ["empty"]),
     ("x,sigma_xx\n", ["header but no rows"]),
 ])
 def test_bad_input_exits_2_with_one_line(tmp_path, capsys, text, words):
