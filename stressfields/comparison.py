@@ -584,7 +584,7 @@ def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *
 def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
     """comparison.png: per variable the difference / S along the one coordinate that varies (points
     on a line), or a map over two varying coordinates coloured by |difference| / S; the worst point ringed."""
-    from .plot import require_matplotlib
+    from .plot import plain, require_matplotlib
 
     plt = require_matplotlib()
     names = ds.attrs["compare_variables"].split()
@@ -599,7 +599,7 @@ def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
     for ax in list(axes.flat)[len(names):]:
         ax.set_visible(False)
     # the title holds the file names and the recipe's title as given: plain text, never mathtext
-    fig.suptitle(ds.attrs["title"], fontsize=8, wrap=True, parse_math=False)
+    fig.suptitle(plain(ds.attrs["title"]), fontsize=8, wrap=True)
     fig.tight_layout()
     try:
         fig.savefig(path, dpi=90)       # into the report's temporary folder (`write_report`)

@@ -50,13 +50,19 @@ def require_matplotlib():
     return plt
 
 
+def plain(text: str) -> str:
+    """``text`` drawn as written, never parsed as mathtext (a title "$\\foo$" raised
+    ParseFatalException): every ``$`` escaped. Not parse_math=False: a wrapped title is measured
+    by a path that ignores it (matplotlib 3.10)."""
+    return text.replace("$", "\\$")
+
+
 def quicklook(path: str | Path, recipe) -> Path:
     plt = require_matplotlib()
     path = Path(path)
     with open_dataset(path) as ds:          # choice dimensions labelled by name, for the legends
         fig = _figure(plt, ds, recipe)
-        # the recipe's title as written: plain text ("$\foo$" is no mathtext to parse and fail on)
-        fig.suptitle(recipe.title, fontsize=9, wrap=True, parse_math=False)
+        fig.suptitle(plain(recipe.title), fontsize=9, wrap=True)
         fig.tight_layout()
         png = path.with_suffix(".png")
         fig.savefig(png, dpi=90)

@@ -25,7 +25,8 @@ def small_disk(tmp_path):
 def test_full_disk(tmp_path, small_disk, capsys):
     recipe = tmp_path / "r.toml"
     recipe.write_text(RECIPE)
-    assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.nc"), "-q"]) == 2
+    # past the free-space check (tested below): the disk fills during the write
+    assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.nc"), "-q", "--no-space-check"]) == 2
     err = capsys.readouterr().err
     assert "cannot write" in err and "Traceback" not in err
     assert os.listdir(small_disk) == []
@@ -45,7 +46,60 @@ def test_full_disk_zarr(tmp_path, small_disk, capsys):
     recipe = tmp_path / "r.toml"
     recipe.write_text(RECIPE.replace("num = 200", "num = 400") + '[output]\nchunks = { y = 20 }\n')
     for _ in range(3):     # threads still writing chunks after the first failure once recreated the store
-        assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.zarr"), "-q"]) == 2
+        assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.zarr"), "-q", "--no-space-check"]) == 2
         err = capsys.readouterr().err
         assert "cannot write" in err and "Traceback" not in err
         assert os.listdir(small_disk) == []
+
+
+COMPARE = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "examples", "fe_hertz_mindlin", p)
+           for p in ("recipe.toml", "nodes.csv")]
+
+
+@pytest.fixture
+def report_disk(tmp_path):
+    mount = tmp_path / "rdisk"
+    mount.mkdir()
+    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(mount)],
+                                           capture_output=True).returncode:
+        pytest.skip("cannot mount a small tmpfs here (needs root)")
+    yield mount
+    subprocess.run(["umount", "-l", str(mount)], check=False)
+
+
+def test_compare_on_a_full_disk_leaves_nothing_at_any_stage(tmp_path, report_disk, capsys):
+    """The free space ends inside comparison.nc, inside the PNG, at report.md, and not at all: each a
+    report in full or one line, exit 2 and no folder."""
+    pytest.importorskip("matplotlib")
+    reference = tmp_path / "reference"
+    assert cli.main(["compare", *COMPARE, "-o", str(reference)]) == 0
+    size = {name: os.stat(reference / name).st_blocks * 512 for name in os.listdir(reference)}
+    nc, png = size["comparison.nc"], size["comparison.png"]
+    capsys.readouterr()
+    total = os.statvfs(report_disk).f_blocks * os.statvfs(report_disk).f_frsize
+    for free, stage in [(nc // 2, "comparison.nc"), (nc + png // 2, "comparison.png"), (nc + png, "report.md"),
+                        (total, None)]:
+        free = free // 4096 * 4096
+        with open(report_disk / "filler", "wb") as fh:
+            fh.write(b"\0" * (total - free))
+        code = cli.main(["compare", *COMPARE, "-o", str(report_disk / "report")])
+        err = capsys.readouterr().err.strip()
+        if stage is None:
+            assert code == 0 and set(os.listdir(report_disk / "report")) == set(size), err
+        else:
+            assert code == 2, (stage, code, err)
+            assert err.startswith("error: cannot write") and "\n" not in err and "Traceback" not in err, (stage, err)
+            assert os.listdir(report_disk) == ["filler"], (stage, os.listdir(report_disk))
+        os.unlink(report_disk / "filler")
+
+
+def test_the_free_space_is_checked_before_a_run_and_the_check_can_be_skipped(tmp_path, small_disk, capsys):
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(RECIPE)           # 40 000 points x 13 variables: 3.7 MB on a 256 KB disk
+    assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.nc"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert "needs about" in err and "free" in err and os.listdir(small_disk) == []
+    # skipped: the run starts, and the full disk is the one line
+    assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.nc"), "-q", "--no-space-check"]) == 2
+    err = capsys.readouterr().err
+    assert "cannot write" in err and "needs about" not in err and os.listdir(small_disk) == []

@@ -387,3 +387,73 @@ def test_a_closed_pipe_is_one_line(tmp_path):
     err = proc.stderr.read()
     assert proc.wait(timeout=60) == 2
     assert err.count("\n") == 1 and "pipe" in err
+
+
+# -- compare's report folder ------------------------------------------------------------------------
+
+COMPARE = ("examples/fe_hertz_mindlin/recipe.toml", "examples/fe_hertz_mindlin/nodes.csv")
+REPORT = {"comparison.nc", "comparison.png", "report.md"}
+# the moment of each kill, counted from the report's temporary folder's appearance; the folder is
+# filled in ~0.5-1.5 s here (comparison.nc, then the PNG, then report.md)
+COMPARE_TRIALS = [(sig, round(random.Random(2126 + i).uniform(0.0, 1.2), 2))
+                  for i, sig in enumerate([signal.SIGTERM, signal.SIGKILL, signal.SIGHUP])]
+
+
+def _compare(out, *extra):
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    return _run("compare", *(os.path.join(root, p) for p in COMPARE), "-o", out, "--tolerance", "0.1", *extra)
+
+
+@pytest.mark.parametrize("sig,delay", COMPARE_TRIALS)
+def test_killed_compare_leaves_no_report_or_a_complete_one(tmp_path, sig, delay):
+    out = tmp_path / "report"
+    proc = _compare(out)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline and proc.poll() is None:
+        if any(p.name.startswith(".report.") and p.name.endswith(".partial") for p in tmp_path.iterdir()):
+            break
+        time.sleep(0.005)
+    time.sleep(delay)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=60)
+    print(f"{sig!r} at {delay} s: exit {proc.returncode}, report {'complete' if out.exists() else 'absent'}")
+    if sig != signal.SIGKILL and proc.returncode > 0:     # caught: one true line, nothing left
+        assert proc.returncode == 128 + sig and err.strip().count("\n") == 0 and "terminated" in err, err
+        assert not out.exists() and _leftovers(tmp_path) == []
+    if out.exists():                        # finished before the signal: the whole report
+        assert set(os.listdir(out)) == REPORT
+        _verified(out / "comparison.nc")
+        return
+    again = _compare(out)
+    assert again.wait(timeout=120) == 0, again.stderr.read()
+    assert set(os.listdir(out)) == REPORT and _leftovers(tmp_path) == []
+    _verified(out / "comparison.nc")
+
+
+def test_a_report_folder_is_new_empty_or_a_report_replaced_with_overwrite(tmp_path, capsys):
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    recipe, nodes = (os.path.join(root, p) for p in COMPARE)
+
+    def compare(out, *extra):
+        return cli.main(["compare", recipe, nodes, "-o", str(out), "--tolerance", "0.1", *extra])
+
+    (tmp_path / "file").write_text("x")
+    (tmp_path / "mixed").mkdir()
+    (tmp_path / "mixed" / "notes.txt").write_text("mine")
+    (tmp_path / "mixed" / "report.md").write_text("old")
+    (tmp_path / "link").symlink_to(tmp_path / "mixed")
+    for out, extra, words in [("file", [], "is not a directory"), ("mixed", ["--overwrite"], "not of a report"),
+                              ("link", ["--overwrite"], "symbolic link"), ("no/such/parent", [], "not a directory")]:
+        assert compare(tmp_path / out, *extra) == 2, out
+        err = capsys.readouterr().err.strip()
+        assert words in err and err.count("\n") == 0, (out, err)
+    assert (tmp_path / "mixed" / "notes.txt").read_text() == "mine"
+    (tmp_path / "empty").mkdir()
+    assert compare(tmp_path / "empty") == 0
+    assert set(os.listdir(tmp_path / "empty")) == REPORT
+    assert compare(tmp_path / "empty") == 2 and "use --overwrite" in capsys.readouterr().err
+    before = (tmp_path / "empty" / "comparison.nc").stat().st_ino
+    assert compare(tmp_path / "empty", "--overwrite") == 0
+    assert set(os.listdir(tmp_path / "empty")) == REPORT
+    assert (tmp_path / "empty" / "comparison.nc").stat().st_ino != before
+    assert _leftovers(tmp_path) == []
