@@ -200,7 +200,8 @@ def _parser() -> argparse.ArgumentParser:
                      "(units: " + ", ".join(COMPARE_UNITS) + "; none: the scenario's unit), or NetCDF along one "
                      "dimension with units attributes")
     cmp.add_argument("-o", "--output", dest="report_dir", type=Path, required=True,
-                     help="report directory: comparison.nc, report.md, comparison.png")
+                     help="report folder (comparison.nc, report.md, comparison.png), published whole when "
+                     "complete: a new or empty folder, or a previous report with --overwrite")
     cmp.add_argument("--tolerance", type=float, default=None,
                      help="largest max |difference| / scale (p_m for stresses) a variable may have (default: "
                           "report only, exit 0)")
