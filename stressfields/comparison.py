@@ -571,7 +571,9 @@ def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *
                 os.fsync(fd)                        # the names of the files, before the folder's own
             finally:
                 os.close(fd)
-            publish_folder(tmp, folder, overwrite=True)     # checked above, under the lock
+            # checked again at the last moment: a folder that gained other files meanwhile is kept
+            check_report_folder(folder, overwrite=overwrite)
+            publish_folder(tmp, folder, overwrite=True)
         except BaseException as exc:
             shutil.rmtree(tmp, ignore_errors=True)
             error = output_error(exc, folder, parent)
