@@ -577,6 +577,9 @@ def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *
         except BaseException as exc:
             shutil.rmtree(tmp, ignore_errors=True)
             error = output_error(exc, folder, parent)
+            if error is None and isinstance(exc, OutputError):     # the writer's: named after the folder
+                text = str(exc).replace(f"{tmp}/comparison.nc", str(folder))
+                error = OutputError(text.replace(str(tmp), str(folder)))
             if error is not None:
                 raise error from None
             raise

@@ -10,16 +10,20 @@ RECIPE = ('scenario = "parabolic"\n[parameters]\nmu = 0.3\nux0 = 0.25\n'
           'y = { start = -1.5, stop = 1.5, num = 200 }\nx = { start = -1.5, stop = 1.5, num = 200 }\n')
 
 
-@pytest.fixture
-def small_disk(tmp_path):
-    mount = tmp_path / "disk"
+def _tmpfs(mount, size: str):
+    """A tmpfs of ``size`` mounted at ``mount`` for the test, unmounted after it."""
     mount.mkdir()
-    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", "size=256k", "tmpfs", str(mount)],
+    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", f"size={size}", "tmpfs", str(mount)],
                                            capture_output=True).returncode:
         pytest.skip("cannot mount a small tmpfs here (needs root)")
     yield mount
     # lazy: a file handle the failed HDF5 write still holds must not keep the mount busy
     subprocess.run(["umount", "-l", str(mount)], check=False)
+
+
+@pytest.fixture
+def small_disk(tmp_path):
+    yield from _tmpfs(tmp_path / "disk", "256k")
 
 
 def test_full_disk(tmp_path, small_disk, capsys):
@@ -58,13 +62,7 @@ COMPARE = [os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__
 
 @pytest.fixture
 def report_disk(tmp_path):
-    mount = tmp_path / "rdisk"
-    mount.mkdir()
-    if os.geteuid() != 0 or subprocess.run(["mount", "-t", "tmpfs", "-o", "size=1m", "tmpfs", str(mount)],
-                                           capture_output=True).returncode:
-        pytest.skip("cannot mount a small tmpfs here (needs root)")
-    yield mount
-    subprocess.run(["umount", "-l", str(mount)], check=False)
+    yield from _tmpfs(tmp_path / "rdisk", "1m")
 
 
 def test_compare_on_a_full_disk_leaves_nothing_at_any_stage(tmp_path, report_disk, capsys):
@@ -88,7 +86,9 @@ def test_compare_on_a_full_disk_leaves_nothing_at_any_stage(tmp_path, report_dis
             assert code == 0 and set(os.listdir(report_disk / "report")) == set(size), err
         else:
             assert code == 2, (stage, code, err)
-            assert err.startswith("error: cannot write") and "\n" not in err and "Traceback" not in err, (stage, err)
+            assert err.startswith(f"error: cannot write {report_disk / 'report'}"), (stage, err)
+            assert "partial" not in err, (stage, err)
+            assert "\n" not in err and "Traceback" not in err, (stage, err)
             assert os.listdir(report_disk) == ["filler"], (stage, os.listdir(report_disk))
         os.unlink(report_disk / "filler")
 
