@@ -20,6 +20,7 @@ profile, depth downwards.
 """
 from __future__ import annotations
 
+import os
 import textwrap
 from pathlib import Path
 
@@ -65,9 +66,29 @@ def quicklook(path: str | Path, recipe) -> Path:
         fig.suptitle(plain(recipe.title), fontsize=9, wrap=True)
         fig.tight_layout()
         png = path.with_suffix(".png")
-        fig.savefig(png, dpi=90)
-        plt.close(fig)
+        try:
+            _save(fig, png)
+        finally:
+            plt.close(fig)
     return png
+
+
+def _save(fig, png: Path) -> None:
+    """The PNG written beside its target under a temporary name (`netcdf.temporary`) and renamed
+    onto it when complete; an I/O failure (a full disk) is one OutputError and leaves no file."""
+    from .errors import OutputError
+    from .netcdf import _umask, temporary
+
+    tmp = temporary(png, ".tmp")
+    try:
+        fig.savefig(tmp, dpi=90, format="png")
+        os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
+        os.replace(tmp, png)
+    except OSError as exc:
+        raise OutputError(f"cannot write {png}: {exc.strerror or exc}") from None
+    finally:
+        if os.path.lexists(tmp):
+            os.unlink(tmp)
 
 
 def _figure(plt, ds: xr.Dataset, recipe):

@@ -101,3 +101,21 @@ def test_the_free_space_is_checked_before_a_run_and_the_check_can_be_skipped(tmp
     assert cli.main(["run", str(recipe), "-o", str(small_disk / "o.nc"), "-q", "--no-space-check"]) == 2
     err = capsys.readouterr().err
     assert "cannot write" in err and "needs about" not in err and os.listdir(small_disk) == []
+
+
+def test_a_quick_look_on_a_full_disk_is_one_line(tmp_path, report_disk, capsys):
+    """The file fits, its PNG does not: one line, exit 2, the complete file and no temporary."""
+    pytest.importorskip("matplotlib")
+    recipe = tmp_path / "r.toml"
+    recipe.write_text(RECIPE.replace("num = 200", "num = 40"))
+    assert cli.main(["run", str(recipe), "-o", str(report_disk / "o.nc"), "-q", "--plot"]) == 0
+    nc, png = (os.stat(report_disk / f"o.{s}").st_blocks * 512 for s in ("nc", "png"))
+    os.unlink(report_disk / "o.nc")
+    os.unlink(report_disk / "o.png")
+    total = os.statvfs(report_disk).f_blocks * os.statvfs(report_disk).f_frsize
+    with open(report_disk / "filler", "wb") as fh:
+        fh.write(b"\0" * (total - (nc + png // 2) // 4096 * 4096))
+    assert cli.main(["run", str(recipe), "-o", str(report_disk / "o.nc"), "-q", "--plot"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"error: cannot write {report_disk / 'o.png'}") and "\n" not in err, err
+    assert sorted(os.listdir(report_disk)) == ["filler", "o.nc"]
