@@ -158,7 +158,8 @@ def read_user_data(user_data) -> tuple[list[Column], str]:
     except OSError as exc:
         raise CompareError(f"{source}: cannot read it ({exc.strerror})") from None
     try:
-        raw = file_bytes(path, source, MAX_POINTS_FILE_BYTES if netcdf else MAX_CSV_BYTES)
+        # resolved first: the reader follows no symbolic link, and the user may name one
+        raw = file_bytes(Path(os.path.realpath(path)), source, MAX_POINTS_FILE_BYTES if netcdf else MAX_CSV_BYTES)
         columns = (nc_columns(raw, skip_scalars=True, drop_index=True, kept_index=ID_COLUMNS) if netcdf
                    else csv_columns(raw))
     except FileProblem as exc:

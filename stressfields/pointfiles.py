@@ -71,7 +71,7 @@ def read_points_file(name, base: Path | None, problems: list[str],
         return [], {}
     try:
         path = resolve(name, base, allow_read)
-        suffix = path.suffix.lower()
+        suffix = Path(name).suffix.lower()      # the name's, not its link target's
         if suffix not in _READERS:
             raise FileProblem(f"unknown file type {show(Path(name).suffix or '(no suffix)')}; one of "
                               f"{', '.join(POINTS_FILE_TYPES)}")

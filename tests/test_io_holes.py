@@ -72,7 +72,9 @@ def test_a_points_file_outside_the_recipes_folder_is_refused_unless_allowed(fold
     (rec / "sub").mkdir()
     nodes_csv(rec / "inside.csv")
     (rec / "sub" / "again.csv").symlink_to(rec / "inside.csv")
-    for name in ("sub/../inside.csv", "sub/again.csv", str(rec / "inside.csv")):
+    (rec / "data.txt").write_text("x,y\n0.1,0.2\n0.5,0.0\n")
+    (rec / "named.csv").symlink_to("data.txt")          # the reader follows the name's suffix
+    for name in ("sub/../inside.csv", "sub/again.csv", str(rec / "inside.csv"), "named.csv"):
         recipe = rec / "ok.toml"
         recipe.write_text(TOML.format(name=json.dumps(name)))
         assert load(recipe).values["y"].tolist() == [0.2, 0.0], name
@@ -128,7 +130,9 @@ def test_messages_quote_no_file_content(tmp_path, monkeypatch):
 
 
 def test_compare_node_files_quote_no_content(tmp_path):
-    recipe = Path("examples/fe_hertz_mindlin/recipe.toml").resolve()
+    recipe = Path(__file__).parents[1] / "examples" / "fe_hertz_mindlin" / "recipe.toml"
+    (tmp_path / "nodes.csv").symlink_to(recipe.with_name("nodes.csv"))      # a node file may be a link
+    assert comparison.compare(recipe, tmp_path / "nodes.csv").sizes["point"] == 200
     for name, path in _hostile_files(tmp_path).items():
         if path.suffix not in (".csv", ".nc"):
             continue
