@@ -138,11 +138,6 @@ def file_bytes(path: Path, name: str | None = None, limit: int = MAX_POINTS_FILE
     return raw
 
 
-def read_columns(raw: bytes, suffix: str) -> list[Column]:
-    """The columns of a file's bytes by its type (one of POINTS_FILE_TYPES)."""
-    return _READERS[suffix](raw)
-
-
 def _check_rows(n: int) -> None:
     if n > MAX_SWEEP:
         raise FileProblem(f"it has {n:,} rows; [points] has at most {MAX_SWEEP:,}")
@@ -292,7 +287,7 @@ def _npy_header(handle, size: int) -> tuple[tuple, np.dtype]:
         version = np.lib.format.read_magic(handle)
         read = np.lib.format.read_array_header_1_0 if version == (1, 0) else np.lib.format.read_array_header_2_0
         shape, _, dtype = read(handle)
-    except (ValueError, OSError, EOFError, SyntaxError, TypeError):     # numpy's messages quote the header
+    except (ValueError, OSError, EOFError, SyntaxError, TypeError, RecursionError):   # numpy's quote the header
         raise FileProblem("not a readable .npy array (its header cannot be read)") from None
     if dtype.hasobject:
         raise FileProblem("it holds Python objects; a points file holds numbers only")
@@ -388,7 +383,8 @@ def nc_columns(raw: bytes, *, skip_scalars: bool = False, drop_index: bool = Fal
             if len(var.dimensions) != 1:
                 raise FileProblem(f"the variable {name!r} has {len(var.dimensions)} dimensions; a points file "
                                   "has 1-D variables along one dimension (one entry per point)")
-            if var.dtype is str or not _numeric(np.dtype(var.dtype)):
+            # a primitive type only: strings, variable-length, compound and enum types are not numbers
+            if not isinstance(var.datatype, np.dtype) or not _numeric(var.datatype):
                 raise FileProblem(f"the variable {name!r} does not hold numbers")
         dims = {v.dimensions[0] for v in variables.values()}
         if len(dims) > 1:
