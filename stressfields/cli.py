@@ -27,7 +27,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from . import __version__
 from .errors import OutputError
 from .options import DTYPES, NONFINITE
-from .textfiles import write_text as _write_text
 
 #: the unit conversions of `compare` (comparison.UNITS, held equal by tests/test_compare.py)
 COMPARE_UNITS = ("Pa", "kPa", "MPa", "GPa", "m", "mm", "um", "N", "1")

@@ -548,6 +548,7 @@ def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *
     the next (`netcdf.clean_stale`). The folder replaced by ``overwrite`` is moved aside in one rename
     and removed after, as for a Zarr store."""
     from .netcdf import _umask, clean_stale, output_error, temporary
+    from .textfiles import write_text
     from .writers import target_lock, write
     from .zarrstore import publish_folder
 
@@ -562,10 +563,7 @@ def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *
             write(ds, tmp / "comparison.nc")
             if plot:
                 plot_comparison(ds, tmp / "comparison.png")
-            with open(tmp / "report.md", "w", encoding="utf-8", errors="backslashreplace") as fh:
-                fh.write(report_markdown(ds, recipe_label, note))
-                fh.flush()
-                os.fsync(fh.fileno())
+            write_text(tmp / "report.md", report_markdown(ds, recipe_label, note))
             os.chmod(tmp, 0o777 & ~_umask())         # mkdtemp makes 0700; publish like any new folder
             fd = os.open(tmp, os.O_RDONLY)
             try:

@@ -404,6 +404,7 @@ def _compare(out, *extra):
     return _run("compare", *(os.path.join(root, p) for p in COMPARE), "-o", out, "--tolerance", "0.1", *extra)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("sig,delay", COMPARE_TRIALS)
 def test_killed_compare_leaves_no_report_or_a_complete_one(tmp_path, sig, delay):
     out = tmp_path / "report"
