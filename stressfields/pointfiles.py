@@ -220,8 +220,8 @@ def _csv_values(raw: bytes, start: int, names: list[str], header_line: int) -> n
     """The rows of numbers from byte ``start`` on (after the header), parsed by pandas' C reader from
     the bytes (correctly rounded; a 1e6-row CSV of three columns in 0.57-0.76 s here against 2.5-2.6 s
     for np.loadtxt, medians of 3 at a load of 11-13 on 2 cores, pandas already imported, as xarray
-    does). The fast pass takes numbers only: no missing-value
-    filter, and comments only if the body has a ``#``. A missing value, a row of the wrong length, a
+    does). The fast pass takes numbers only: no missing-value filter, and comments only if the body
+    has a ``#``. A missing value, a row of the wrong length, a
     field that is not a number or a byte that is not UTF-8 is then located by `_csv_where` (one Python
     step per line, on that error path only); if it finds none, the fields written "nan" are what
     failed, and a second pass reads them as NaN (refused with its row by the range checks)."""
