@@ -1,12 +1,12 @@
 """Content hash of a dataset: what the file says, not how HDF5 happened to lay it out.
 
 Lazy NetCDF writes are not byte-reproducible (HDF5 places chunks in arrival order), so the
-reproducibility contract is a SHA-256 over the global attributes except `history` (a timestamp) and
-the hash itself, then, for every variable in name order: its name, dims, dtype, shape and its
-attributes with their stored types (an int8 ``flag_values`` is not an int64 one), followed by the
-SHA-256 digest of its little-endian values in C order. Strings hash alike whatever array type holds
-them (NetCDF gives Python objects, Zarr NumPy's StringDType). Same recipe, same environment: same
-hash, whatever the chunking or the scheduler.
+reproducibility contract is a SHA-256 over the global attributes except `history` and
+`date_created` (times) and the hash itself (also stored as the ACDD `id`), then, for every variable
+in name order: its name, dims, dtype, shape and its attributes with their stored types (an int8
+``flag_values`` is not an int64 one), followed by the SHA-256 digest of its little-endian values in
+C order. Strings hash alike whatever array type holds them (NetCDF gives Python objects, Zarr NumPy's
+StringDType). Same recipe, same environment: same hash, whatever the chunking or the scheduler.
 
 A digest per variable lets the values of two variables be read back and hashed at once, one per
 core (`content_hash`): SHA-256 itself is sequential, and it is what a run does last (1e7 points of
@@ -27,7 +27,8 @@ import numpy as np
 import xarray as xr
 
 ATTR = "stressfields_content_sha256"
-_SKIP_GLOBAL = {"history", ATTR}
+#: the ACDD ``id`` a file carries is its content hash; ``date_created``, like ``history``, is a time
+_SKIP_GLOBAL = {"history", "date_created", "id", ATTR}
 #: slabs read for hashing: small enough for reading and hashing to overlap, large enough to stream
 _READ_BYTES = 8 * 2 ** 20
 
@@ -143,6 +144,7 @@ def stamp(path: str | Path) -> str:
     digest, _ = file_hash(path)
     with netCDF4.Dataset(path, "a") as nc:
         nc.setncattr(ATTR, digest)
+        nc.setncattr("id", digest)
     return digest
 
 

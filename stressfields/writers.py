@@ -131,7 +131,8 @@ def encode_choices(ds: xr.Dataset) -> xr.Dataset:
         attrs = {**var.attrs, "flag_values": codes, "flag_meanings": " ".join(labels)}
         coords[name] = xr.Variable((name,), codes, attrs)
         coords[f"{name}_name"] = xr.Variable((name,), np.array(labels, dtype=object),
-                                             {"long_name": f"{var.attrs.get('long_name', name)} (name)"})
+                                             {"long_name": f"{var.attrs.get('long_name', name)} (name)",
+                                              "coverage_content_type": "coordinate"})
     return xr.Dataset(data_vars, coords=coords, attrs=ds.attrs)
 
 
@@ -344,6 +345,7 @@ def export(source: str | os.PathLike, target: str | os.PathLike, *, overwrite: b
     verify(source)
     with target_lock(target), format_for(source).read(source) as ds:
         ds.attrs.pop(ATTR, None)
+        ds.attrs.pop("id", None)
         for name in ds.variables:      # one format's encodings (compressors, chunk keys) mean nothing to another
             ds[name].encoding = {}
         # the stored dtypes and values are copied as they are; the recorded options (compression)
