@@ -72,9 +72,27 @@ def compare(recipe: str | Path | Mapping, user_data: str | Path | xr.Dataset | M
             tolerance: float | None = None, variables: list[str] | tuple[str, ...] | None = None) -> xr.Dataset:
     """The user's values against the reference at the user's points (see the module docstring).
 
-    ``tolerance`` (optional) is the largest max |difference| / S a variable may have to pass;
-    ``variables`` limits the comparison to these value columns (default: every one).
-    Raises CompareError (one line) for input that cannot be compared.
+    Parameters
+    ----------
+    recipe : str, Path or Mapping
+        The recipe of the reference; the coordinates the user's data give replace its sweep.
+    user_data : str, Path, xarray.Dataset or Mapping
+        A CSV or NetCDF file, a dataset along one dimension, or a mapping of header -> values.
+    tolerance : float, optional
+        The largest max |difference| / S a variable may have to pass (None: report only).
+    variables : list of str, optional
+        Compare only these value columns (default: every one).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``<v>_reference``, ``<v>_user``, ``<v>_difference`` and ``<v>_scale`` at every point; the
+        statistics and the verdict (``compare_result``) in its attributes.
+
+    Raises
+    ------
+    CompareError
+        In one line, for input that cannot be compared.
     """
     tolerance = _check_tolerance(tolerance)
     base, data = _recipe(recipe)

@@ -524,11 +524,12 @@ def _cluster_compute(delayed, client, progress: bool) -> None:
 
 
 def progress_bar(show: bool):
+    """dask's progress bar, on stderr: stdout carries results only (`run -o x.nc > log` stays empty)."""
     if not show:
         return nullcontext()
     from dask.diagnostics import ProgressBar
 
-    return ProgressBar(minimum=0.5, dt=0.2)
+    return ProgressBar(minimum=0.5, dt=0.2, out=sys.stderr)
 
 
 def _remove(path: str) -> None:

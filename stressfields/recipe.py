@@ -38,6 +38,7 @@ import math
 import os
 import re
 import stat
+import sys
 import tomllib
 import warnings
 from dataclasses import dataclass, field
@@ -132,14 +133,20 @@ class Recipe:
         return int(np.prod(list(self.shape.values()), dtype=np.int64)) if self.dims else 1
 
 
+#: the recipe path that means standard input (`stressfields validate -`, `stressfields run - -o x.nc`)
+STDIN = "-"
+
+
 def load(source: str | Path | Mapping) -> Recipe:
-    """Parse and validate a recipe from a TOML path, TOML text or a dict."""
+    """Parse and validate a recipe from a TOML path (``"-"``: standard input, relative paths in it
+    then from the working directory) or a dict."""
     if isinstance(source, Mapping):
         data, text, label = dict(source), None, "recipe"
     else:
-        path = Path(source)
-        label = str(path)
-        text = _read_text(path, label)
+        stdin = str(source) == STDIN
+        path = Path.cwd() / "stdin.toml" if stdin else Path(source)
+        label = "<stdin>" if stdin else str(path)
+        text = _decoded(sys.stdin.buffer.read(MAX_RECIPE_BYTES + 1), label) if stdin else _read_text(path, label)
         _check_shape(text, label)
         try:
             data = tomllib.loads(text)
@@ -173,6 +180,11 @@ def _read_text(path: Path, label: str) -> str:
         raise RecipeError([f"cannot read the recipe file: {exc.strerror}"], label) from None
     finally:
         os.close(fd)
+    return _decoded(raw, label)
+
+
+def _decoded(raw: bytes, label: str) -> str:
+    """Recipe bytes as text: at most MAX_RECIPE_BYTES of UTF-8."""
     if len(raw) > MAX_RECIPE_BYTES:
         raise RecipeError([f"the file has more than {MAX_RECIPE_BYTES:,} bytes; a recipe has at most "
                            f"{MAX_RECIPE_BYTES:,}"], label)

@@ -98,6 +98,30 @@ def scenario_text(scen: Scenario, level: int = 1) -> str:
     return "\n".join(lines)
 
 
+def scenario_record(scen: Scenario) -> dict:
+    """The declaration of ``scen`` as plain JSON values (`stressfields describe NAME --json`): what
+    the text of `scenario_text` says, one key per column."""
+    def default(p: Parameter):
+        value = p.default.tolist() if isinstance(p.default, np.ndarray) else p.default
+        return value if isinstance(value, (str, int, float, list, type(None))) else repr(value)
+
+    parameters = [{"name": p.name, "long_name": p.label_in(p.mode == "physical"), "meaning": p.meaning,
+                   "units": None if p.choices else p.units, "units_physical": None if p.choices else p.units_in(True),
+                   "kind": p.kind, "allowed": p.allowed(), "low": p.low, "high": p.high, "choices": list(p.choices),
+                   "default": default(p), "required": p.required, "sweepable": p.sweepable, "mode": p.mode,
+                   "when": p.condition() or None} for p in scen.parameters]
+    variables = [{"name": v.name, "long_name": v.label_in(v.mode == "physical"), "description": v.long_name,
+                  "units": None if v.flag_values else v.units, "units_physical": None if v.flag_values
+                  else v.units_in(True), "normalisation": v.scale, "dtype": v.dtype, "mode": v.mode,
+                  "flag_values": list(v.flag_values), "flag_meanings": list(v.flag_meanings),
+                  "depends_on": None if v.dims is None else [d for d in v.dims
+                                                             if d in {p.name for p in scen.parameters}]}
+                 for v in scen.variables]
+    return {"name": scen.name, "summary": scen.summary, "references": scen.full_references,
+            "conventions": scen.conventions, "physical_switch": scen.physical_switch, "methods": list(scen.methods),
+            "parameters": parameters, "variables": variables}
+
+
 def _parameter_row(p: Parameter) -> str:
     if isinstance(p.default, np.ndarray):
         default = "sweep over " + ", ".join(repr(v) for v in p.default.tolist())
