@@ -8,6 +8,7 @@
     sf.estimate("recipes/cone_fig2_sigma_xx.toml")        # dimensions, points, bytes, seconds before running
     sf.scenarios()                                  # names with one-line descriptions
     sf.compare("recipe.toml", "nodes.csv")          # your FE results against the reference at their nodes
+    sf.batches("recipe.toml", 4096, seed=0)         # (inputs, targets) NumPy batches at seeded Sobol points
     sf.open_mfdataset("sweep_*.nc", concat_dim="mu")  # a sweep split over files, every source recipe kept
     sf.examples(); sf.open_example("hertz_subsurface")  # the recipes shipped with the package
 
@@ -28,15 +29,16 @@ from .errors import OutputError  # noqa: E402
 _LAZY = {"generate": "api", "estimate": "api", "scenarios": "api", "describe": "api", "RecipeError": "recipe",
          "examples": "api", "example": "api", "open_example": "api", "open_mfdataset": "reading",
          "write": "writers", "to_netcdf": "writers", "export": "writers", "output_options": "writers",
-         "open_dataset": "reading", "compare": "comparison"}
+         "open_dataset": "reading", "compare": "comparison", "batches": "procedural"}
 
 __all__ = ["generate", "write", "to_netcdf", "export", "open_dataset", "open_mfdataset", "output_options", "estimate",
-           "scenarios", "describe", "compare", "examples", "example", "open_example", "RecipeError", "OutputError",
-           "__version__"]
+           "scenarios", "describe", "compare", "batches", "examples", "example", "open_example", "RecipeError",
+           "OutputError", "__version__"]
 
 if TYPE_CHECKING:       # what the lazy names are, for type checkers and IDEs
     from .api import describe, estimate, example, examples, generate, open_example, scenarios
     from .comparison import compare
+    from .procedural import batches
     from .reading import open_dataset, open_mfdataset
     from .recipe import RecipeError
     from .writers import export, output_options, to_netcdf, write

@@ -86,6 +86,7 @@ def test_every_snippet_runs_in_order(tmp_path, capsys, monkeypatch):
                 _run(line, capsys, monkeypatch)
                 ran["bash"] += 1
         elif language == "python":
+            code = "\n".join(line for line in code.splitlines() if "# illustrative" not in line)
             exec(compile(code, "README.md", "exec"), namespace)
             ran["python"] += 1
         elif language == "toml" and code.lstrip().startswith("scenario"):
