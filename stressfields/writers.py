@@ -176,8 +176,13 @@ def check_provenance(ds: xr.Dataset) -> None:
         swept = params.get(dim)
         if dim not in ds.coords or not isinstance(swept, list) or ds[dim].ndim != 1:
             continue
-        kind = object if ds[dim].dtype.kind in "OUT" else float
-        values = np.asarray(ds[dim].values).astype(kind)
+        values = np.asarray(ds[dim].values)
+        if "flag_meanings" in ds[dim].attrs:        # a choice in its stored form: codes -> names
+            codes = np.ravel(ds[dim].attrs["flag_values"]).tolist()
+            names = dict(zip(codes, str(ds[dim].attrs["flag_meanings"]).split()))
+            values = np.array([names.get(v, v) for v in values.tolist()], dtype=object)
+        kind = object if values.dtype.kind in "OUT" or any(isinstance(v, str) for v in swept) else float
+        values = values.astype(kind)
         beyond = ~np.isin(values, np.asarray(swept, dtype=kind))
         if beyond.any():
             recipe, first = str(ds.attrs.get("stressfields_recipe_sha256", ""))[:16], _plain(values[beyond][0])
