@@ -1,14 +1,16 @@
 """stressfields: reference datasets of contact-mechanics fields.
 
     import stressfields as sf
-    ds = sf.generate("recipes/cone_figures.toml")   # or a dict with the same keys; lazy xr.Dataset
+    ds = sf.generate("recipes/cone_fig2_sigma_xx.toml")   # or a dict with the same keys; lazy xr.Dataset
     sf.write(ds, "cone.nc")                         # atomic write (.nc NetCDF, .zarr Zarr; parts=, resume=;
                                                     # dtype="float32", compression=4, nonfinite="nan")
     sf.open_dataset("cone.nc")                      # reopen lazily, choice dimensions labelled by name
-    sf.estimate("recipes/cone_figures.toml")        # dimensions, points, bytes, seconds before running
+    sf.estimate("recipes/cone_fig2_sigma_xx.toml")        # dimensions, points, bytes, seconds before running
     sf.scenarios()                                  # names with one-line descriptions
     sf.compare("recipe.toml", "nodes.csv")          # your FE results against the reference at their nodes
     sf.batches("recipe.toml", 4096, seed=0)         # (inputs, targets) NumPy batches at seeded Sobol points
+    sf.open_mfdataset("sweep_*.nc", concat_dim="mu")  # a sweep split over files, every source recipe kept
+    sf.examples(); sf.open_example("hertz_subsurface")  # the recipes shipped with the package
 
 The names are imported on first use: xarray imports this package to list its backend
 (``engine="stressfields"``) whenever it opens a file, and that must not load the physics.
@@ -16,21 +18,33 @@ The names are imported on first use: xarray imports this package to list its bac
 from __future__ import annotations
 
 import importlib
+from typing import TYPE_CHECKING, Any
 
+#: the one source of the version (pyproject.toml reads it from here)
 __version__ = "0.1.0"
 
 from .errors import OutputError  # noqa: E402
 
 #: public name -> the module that defines it
 _LAZY = {"generate": "api", "estimate": "api", "scenarios": "api", "describe": "api", "RecipeError": "recipe",
+         "examples": "api", "example": "api", "open_example": "api", "open_mfdataset": "reading",
          "write": "writers", "to_netcdf": "writers", "export": "writers", "output_options": "writers",
          "open_dataset": "reading", "compare": "comparison", "batches": "procedural"}
 
-__all__ = ["generate", "write", "to_netcdf", "export", "open_dataset", "output_options", "estimate", "scenarios",
-           "describe", "compare", "batches", "RecipeError", "OutputError", "__version__"]
+__all__ = ["generate", "write", "to_netcdf", "export", "open_dataset", "open_mfdataset", "output_options", "estimate",
+           "scenarios", "describe", "compare", "batches", "examples", "example", "open_example", "RecipeError",
+           "OutputError", "__version__"]
+
+if TYPE_CHECKING:       # what the lazy names are, for type checkers and IDEs
+    from .api import describe, estimate, example, examples, generate, open_example, scenarios
+    from .comparison import compare
+    from .procedural import batches
+    from .reading import open_dataset, open_mfdataset
+    from .recipe import RecipeError
+    from .writers import export, output_options, to_netcdf, write
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> Any:
     if name in _LAZY:
         value = getattr(importlib.import_module(f".{_LAZY[name]}", __name__), name)
         globals()[name] = value
@@ -43,5 +57,5 @@ def __getattr__(name: str):
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}") from None
 
 
-def __dir__():
+def __dir__() -> list[str]:
     return sorted([*globals(), *_LAZY])

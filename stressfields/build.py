@@ -54,7 +54,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
             # labelled by name in memory (.sel(control="fixed_load"), legends); the writers store
             # it as the CF flag coordinate (writers.encode_choices), sf.open_dataset reads it back
             coords[par.name] = xr.Variable((par.name,), np.asarray(value, dtype=object),
-                                           {"long_name": par.meaning_in(physical)})
+                                           cf.coord_attrs(par, physical))
         elif par.name in recipe.swept:
             coords[par.name] = xr.Variable((par.name,), value, cf.coord_attrs(par, physical))
         elif par.kind == ARRAY:

@@ -1,5 +1,10 @@
 """Command line: stressfields run | list | describe | validate | schema | export | hash | compare | suite | bench.
 
+Conventions: results go to stdout and everything else (progress, notes, errors) to stderr; progress
+bars only when stderr is a terminal; `--json` gives `list`, `describe`, `validate` and `hash` as one
+JSON document; a recipe path `-` reads the recipe from standard input; `-o -` is refused (NetCDF and
+Zarr need a file or directory); no colour is ever written, so NO_COLOR holds whatever it says.
+
 The heavy libraries (xarray, dask, the writers) are imported inside the commands that compute or
 write: `--help`, `list`, `describe`, `schema` and `validate` need only the scenario declarations,
 which import no kernel and no scipy (``physics/names.py``). Measured: `stressfields describe conical`
@@ -16,6 +21,7 @@ import os
 import signal
 import sys
 import threading
+import time
 from pathlib import Path
 
 # the dask threads are the run's parallelism: OpenBLAS's own threads (started with NumPy, used by
@@ -125,7 +131,8 @@ def _parser() -> argparse.ArgumentParser:
     sub = p.add_subparsers(dest="command", required=True)
 
     run = sub.add_parser("run", help="generate the datasets of one or more recipes")
-    run.add_argument("recipes", nargs="+", type=Path, help="recipe TOML file(s)")
+    run.add_argument("recipes", nargs="+", type=Path, help="recipe TOML file(s); - reads one from standard input "
+                     "(written to OUT_DIR/stdin.nc without -o)")
     run.add_argument("-o", "--output", type=Path, help="output NetCDF file, or a Zarr store if it ends in "
                      ".zarr (one recipe only)")
     run.add_argument("-d", "--out-dir", type=Path, default=Path("out"),
@@ -137,7 +144,10 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--overwrite", action="store_true", help="replace existing output files")
     run.add_argument("--plot", action="store_true", help="also write a quick-look PNG beside each file "
                      "(needs matplotlib: pip install 'stressfields[plot]')")
-    run.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    talk = run.add_mutually_exclusive_group()
+    talk.add_argument("-q", "--quiet", action="store_true", help="nothing on stderr but errors")
+    talk.add_argument("-v", "--verbose", action="store_true", help="also the chunks, and each file's size, time and "
+                      "content hash")
     run.add_argument("--resume", action="store_true", help="finish an interrupted run from its finished parts "
                      "(OUT.nc.parts/); implies writing in parts")
     run.add_argument("--parts", action="store_true", help="write in resumable parts along the first dimension "
@@ -169,9 +179,14 @@ def _parser() -> argparse.ArgumentParser:
     desc.set_defaults(func=_describe)
 
     val = sub.add_parser("validate", help="check recipes without computing anything")
-    val.add_argument("recipes", nargs="+", type=Path)
+    val.add_argument("recipes", nargs="+", type=Path, help="recipe TOML file(s); - reads one from standard input")
     _allow_read_option(val)
     val.set_defaults(func=_validate)
+
+    ex = sub.add_parser("example", help="the recipes shipped with the package: their names, or one recipe's TOML "
+                        "(stressfields example hertz_subsurface | stressfields run - -o hertz.nc)")
+    ex.add_argument("name", nargs="?", help="a name from `stressfields example`")
+    ex.set_defaults(func=_example)
 
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
     sch.set_defaults(func=_schema)
@@ -190,6 +205,8 @@ def _parser() -> argparse.ArgumentParser:
     hsh = sub.add_parser("hash", help="recompute a file's content hash and check it against the stored one")
     hsh.add_argument("files", nargs="+", type=Path)
     hsh.set_defaults(func=_hash)
+    for command in (lst, desc, val, hsh):
+        command.add_argument("--json", action="store_true", help="one JSON document on stdout")
 
     cmp = sub.add_parser("compare", help="compare your nodal values (e.g. an FE model's; CSV or NetCDF) with "
                          "the reference at the same points: exit 0 within --tolerance, 1 beyond it, 2 bad input")
@@ -237,6 +254,7 @@ def _compare(args) -> int:
     checked before anything is computed."""
     from .comparison import check_report_folder, compare, summary, write_report
 
+    _no_stdout(args.report_dir)
     out = args.report_dir
     check_report_folder(out, overwrite=args.overwrite)
     plotting = _has_matplotlib()
@@ -254,6 +272,13 @@ def _compare(args) -> int:
     return 1 if ds.attrs["compare_result"] == "FAIL" else 0
 
 
+def _no_stdout(output: Path | None) -> None:
+    """Refuse ``-o -``: the outputs are NetCDF files, Zarr stores and report folders, not a stream."""
+    if output is not None and str(output) == "-":
+        raise UsageError("-o -: output cannot go to stdout (NetCDF and Zarr need a file or directory); "
+                         "give a path such as -o out.nc")
+
+
 def _has_matplotlib() -> bool:
     import importlib.util
 
@@ -263,6 +288,7 @@ def _has_matplotlib() -> bool:
 def _export(args) -> int:
     from .writers import export
 
+    _no_stdout(args.output)
     if not args.store.exists():
         raise UsageError(f"{args.store}: no such file or store")
     if args.layout:
@@ -277,7 +303,7 @@ def _export(args) -> int:
 def _hash(args) -> int:
     from .hashing import file_hash
 
-    bad = 0
+    bad, records = 0, []
     for path in args.files:
         if not path.exists():
             raise UsageError(f"{path}: no such file")
@@ -288,14 +314,19 @@ def _hash(args) -> int:
         except Exception as exc:      # any reader's failure on a damaged or foreign file
             raise UsageError(f"{path}: not a readable NetCDF file or Zarr store "
                              f"({type(exc).__name__}: {str(exc)[:200]})") from None
+        status = "unverified" if stored is None else "ok" if stored == digest else "mismatch"
+        bad += status != "ok"
+        records.append({"file": str(path), "sha256": digest, "stored": stored, "status": status})
+        if args.json:
+            continue
         if stored is None:
             print(f"{path}: {digest} unverified (no stored hash to check)")
-            bad += 1
         elif stored == digest:
             print(f"{path}: {digest} ok")
         else:
             print(f"{path}: {digest} MISMATCH (stored {stored})")
-            bad += 1
+    if args.json:
+        _json(records)
     return 1 if bad else 0
 
 
@@ -362,8 +393,11 @@ def _run(args) -> int:
     from .recipe import load
     from .writers import check_name, check_space, check_target, format_for, output_options, space_needed, write
 
+    _no_stdout(args.output)
     if args.output and len(args.recipes) > 1:
         raise UsageError("-o/--output takes one recipe; use --out-dir for several")
+    if sum(str(p) == "-" for p in args.recipes) > 1:
+        raise UsageError("- (standard input) can be given once")
     chunks = _parse_chunks(args.chunks)
     if args.plot and not args.dry_run:
         _check_plotting()
@@ -377,7 +411,7 @@ def _run(args) -> int:
                              f"(swept: {', '.join(recipe.dims) or 'none'})")
         wanted = {**recipe.chunks, **chunks}
         check_chunks(recipe.shape, wanted, default_chunks(recipe.shape, wanted))   # task count, before any work
-        target = args.output or args.out_dir / f"{path.stem}.nc"
+        target = args.output or args.out_dir / f"{'stdin' if str(path) == '-' else path.stem}.nc"
         if args.scheduler == "processes" and format_for(target).name == "netcdf":
             # the HDF5 writer's handle and lock cannot be shared with other processes (dask fails
             # pickling the lock after computing); Zarr stores take writes from any process
@@ -422,14 +456,19 @@ def _run(args) -> int:
                 args.out_dir.mkdir(parents=True, exist_ok=True)
             except OSError as exc:
                 raise OutputError(f"--out-dir {args.out_dir}: {exc.strerror or exc}") from None
+        # progress bars (dask's, the cluster's) only where someone watches: not into pipes and logs
+        progress = not args.quiet and sys.stderr.isatty()
         for ds, (path, recipe, target, storage) in zip(datasets, jobs):
+            started = time.perf_counter()
             if not args.quiet:
                 dims = " x ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "scalar"
                 print(f"{path} -> {target}  [{recipe.scenario.name}: {dims}, "
                       f"{len(ds.data_vars)} variables]", file=sys.stderr)
+            if args.verbose:
+                print(f"  chunks: {dict(ds.chunks) or 'one block'}", file=sys.stderr)
             parts = args.parts or (recipe.size > PARTS_ABOVE and format_for(target).resumable)
             try:
-                write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=not args.quiet,
+                write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=progress,
                       scheduler=scheduler, space_check=args.space_check, **storage)
             except Exception as exc:
                 if client is None or not _cluster_failure(exc, client):
@@ -437,6 +476,8 @@ def _run(args) -> int:
                 reason = " ".join(str(exc).split())[:200]
                 raise OutputError(f"the dask scheduler {args.scheduler} was lost during the run "
                                   f"({type(exc).__name__}: {reason}); {target} was not written") from None
+            if args.verbose:
+                _said_written(target, time.perf_counter() - started)
             if args.plot:
                 from .plot import quicklook
 
@@ -449,6 +490,17 @@ def _run(args) -> int:
         local.close()
         gc.unfreeze()
     return 0
+
+
+def _said_written(target: Path, seconds: float) -> None:
+    """-v: the written file's size, the time it took and its content hash, on stderr."""
+    from .hashing import ATTR
+    from .writers import format_for
+
+    size = sum(f.stat().st_size for f in target.rglob("*") if f.is_file()) if target.is_dir() else target.stat().st_size
+    with format_for(target).read(target, raw=True) as ds:
+        digest = ds.attrs.get(ATTR, "none")
+    print(f"  wrote {size:,} bytes in {seconds:.2f} s; content sha256 {digest}", file=sys.stderr)
 
 
 @contextlib.contextmanager
@@ -564,9 +616,18 @@ def _parse_chunks(text: str) -> dict[str, int]:
     return chunks
 
 
+def _json(value) -> None:
+    import json
+
+    print(json.dumps(value, indent=2, ensure_ascii=False))
+
+
 def _list(args) -> int:
     from .api import scenarios
 
+    if args.json:
+        _json(scenarios())
+        return 0
     for name, summary in scenarios().items():
         print(f"{name:16s} {summary}")
     return 0
@@ -576,27 +637,57 @@ def _describe(args) -> int:
     from .api import describe
 
     try:
-        print(describe(args.scenario))
+        text = describe(args.scenario)
     except KeyError as exc:
         raise UsageError(exc.args[0]) from None
+    if args.json:
+        from .scenarios import REGISTRY
+        from .schema import scenario_record
+
+        _json(scenario_record(REGISTRY[args.scenario]))
+        return 0
+    print(text)
     return 0
 
 
 def _validate(args) -> int:
     from .recipe import RecipeError, load
 
-    failed = 0
+    if sum(str(p) == "-" for p in args.recipes) > 1:
+        raise UsageError("- (standard input) can be given once")
+    failed, records = 0, []
     for path in args.recipes:
         try:
             recipe = load(path, allow_read=args.allow_read)
         except RecipeError as exc:
-            print(str(exc), file=sys.stderr)
             failed += 1
+            records.append({"recipe": str(path), "ok": False, "problems": exc.problems})
+            if not args.json:
+                print(str(exc), file=sys.stderr)
             continue
-        dims = ", ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "no swept dimension"
-        print(f"{path}: ok ({recipe.scenario.name}; {dims}; {recipe.size} points; "
-              f"variables: {', '.join(recipe.variables)})")
+        records.append({"recipe": str(path), "ok": True, "scenario": recipe.scenario.name, "dims": recipe.shape,
+                        "points": recipe.size, "variables": list(recipe.variables),
+                        "recipe_sha256": recipe.sha256})
+        if not args.json:
+            dims = ", ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "no swept dimension"
+            print(f"{path}: ok ({recipe.scenario.name}; {dims}; {recipe.size} points; "
+                  f"variables: {', '.join(recipe.variables)})")
+    if args.json:
+        _json(records)
     return 2 if failed else 0
+
+
+def _example(args) -> int:
+    from .api import example, examples
+
+    if args.name is None:
+        print("\n".join(examples()))
+        return 0
+    try:
+        sys.stdout.write(example(args.name).read_text(encoding="utf-8"))
+    except KeyError as exc:
+        raise UsageError(exc.args[0]) from None
+    return 0
 
 
 def _schema(args) -> int:

@@ -42,6 +42,7 @@ from typing import Mapping
 import numpy as np
 import xarray as xr
 
+from . import cf
 from .errors import OutputError, name_problem
 from .pointfiles import MAX_POINTS_FILE_BYTES, Column, FileProblem, csv_columns, file_bytes, nc_columns
 from .recipe import MAX_RECIPE_BYTES, POINT, RecipeError, load
@@ -63,9 +64,27 @@ def compare(recipe: str | Path | Mapping, user_data: str | Path | xr.Dataset | M
             tolerance: float | None = None, variables: list[str] | tuple[str, ...] | None = None) -> xr.Dataset:
     """The user's values against the reference at the user's points (see the module docstring).
 
-    ``tolerance`` (optional) is the largest max |difference| / S a variable may have to pass;
-    ``variables`` limits the comparison to these value columns (default: every one).
-    Raises CompareError (one line) for input that cannot be compared.
+    Parameters
+    ----------
+    recipe : str, Path or Mapping
+        The recipe of the reference; the coordinates the user's data give replace its sweep.
+    user_data : str, Path, xarray.Dataset or Mapping
+        A CSV or NetCDF file, a dataset along one dimension, or a mapping of header -> values.
+    tolerance : float, optional
+        The largest max |difference| / S a variable may have to pass (None: report only).
+    variables : list of str, optional
+        Compare only these value columns (default: every one).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``<v>_reference``, ``<v>_user``, ``<v>_difference`` and ``<v>_scale`` at every point; the
+        statistics and the verdict (``compare_result``) in its attributes.
+
+    Raises
+    ------
+    CompareError
+        In one line, for input that cannot be compared.
     """
     tolerance = _check_tolerance(tolerance)
     base, data = _recipe(recipe)
@@ -365,31 +384,42 @@ def _assemble(base, ref: xr.Dataset, coords, values, factors, ids, scales, sourc
             out_coords[name] = var.variable
     if ids is not None:
         out_coords[ids.name] = xr.Variable((POINT,), ids.values.astype(np.int64).astype(np.int32),
-                                           {"long_name": f"node identity given in {source}", "units": "1"})
+                                           {"long_name": "node identity", "units": "1",
+                                            "description": f"node identity given in {source}",
+                                            "coverage_content_type": "coordinate"})
     data = {}
     for col in values:
         rv = ref[col.name]
         reference = np.broadcast_to(np.asarray(rv.values, dtype=float), (n,)).copy()
         user = col.values * factors[col.name]
         units = rv.attrs.get("units", "1")
-        long = rv.attrs.get("long_name", col.name)
+        long = rv.attrs.get("description", rv.attrs.get("long_name", col.name))
         data[f"{col.name}_reference"] = xr.Variable((POINT,), reference, {
             k: v for k, v in rv.attrs.items() if k not in ("coordinates",)})
+        # short long_names (plot labels), the sentences in description (cf.py)
         data[f"{col.name}_user"] = xr.Variable((POINT,), user, {
-            "long_name": f"{long}: user value from {source}"
-                         + (f" (converted from {col.unit})" if col.unit not in (None, units) else ""),
-            "units": units})
+            "long_name": f"{col.name} (user)",
+            "description": f"{long}: user value from {source}"
+                           + (f" (converted from {col.unit})" if col.unit not in (None, units) else ""),
+            "units": units, "coverage_content_type": "modelResult"})
         data[f"{col.name}_difference"] = xr.Variable((POINT,), user - reference, {
-            "long_name": f"user minus reference: {long}", "units": units})
+            "long_name": f"{col.name} user - reference", "description": f"user minus reference: {long}",
+            "units": units, "coverage_content_type": "qualityInformation"})
         definition, needs = scales[col.name]
         data[f"{col.name}_scale"] = xr.Variable((POINT,), _scale_value(definition, needs, ref, reference), {
-            "long_name": f"scale S of the comparison of {col.name}: {definition}", "units": units})
+            "long_name": f"scale S of {col.name}",
+            "description": f"scale S of the comparison of {col.name}: {definition}", "units": units,
+            "coverage_content_type": "referenceInformation"})
     if "validity" in ref and ref["validity"].ndim <= 1:
         flag = ref["validity"]
         data["reference_validity"] = xr.Variable((POINT,), np.broadcast_to(flag.values, (n,)).copy(), flag.attrs)
     attrs = {
-        "Conventions": "CF-1.8", "featureType": "point",
+        "Conventions": cf.CONVENTIONS, "featureType": "point",
         "title": f"{source} against the stressfields reference of {ref.attrs.get('title', base.title)}",
+        "history": cf.history(f"compare ({source} against scenario {base.scenario.name}, "
+                              f"recipe sha256 {ref.attrs.get('stressfields_recipe_sha256', '')[:16]})"),
+        **cf.discovery_attrs(f"User results from {source} beside the stressfields reference at the same points "
+                             "and their differences.", base.scenario.name),
         "source": ref.attrs.get("source", ""), "comment": ref.attrs.get("comment", ""),
         "references": ref.attrs.get("references", ""),
         "stressfields_scenario": base.scenario.name,
@@ -430,7 +460,7 @@ def _statistics(ds: xr.Dataset, name: str, coords: list[str]) -> dict:
     scale = ds[f"{name}_scale"].values
     ok = np.isfinite(ref)
     stats = {"compared_points": int(ok.sum()), "excluded_points": int((~ok).sum()),
-             "scale_definition": ds[f"{name}_scale"].attrs["long_name"].split(": ", 1)[1]}
+             "scale_definition": ds[f"{name}_scale"].attrs["description"].split(": ", 1)[1]}
     if not ok.any():
         return {**stats, "max_abs_difference_over_scale": math.nan, "rms_difference": math.nan,
                 "rms_difference_over_scale": math.nan, "relative_l2": math.nan, "worst_point": -1,

@@ -1,12 +1,12 @@
 """Content hash of a dataset: what the file says, not how HDF5 happened to lay it out.
 
 Lazy NetCDF writes are not byte-reproducible (HDF5 places chunks in arrival order), so the
-reproducibility contract is a SHA-256 over the global attributes except `history` (a timestamp) and
-the hash itself, then, for every variable in name order: its name, dims, dtype, shape and its
-attributes with their stored types (an int8 ``flag_values`` is not an int64 one), followed by the
-SHA-256 digest of its little-endian values in C order. Strings hash alike whatever array type holds
-them (NetCDF gives Python objects, Zarr NumPy's StringDType). Same recipe, same environment: same
-hash, whatever the chunking or the scheduler.
+reproducibility contract is a SHA-256 over the global attributes except `history` and
+`date_created` (times) and the hash itself (also stored as the ACDD `id`), then, for every variable
+in name order: its name, dims, dtype, shape and its attributes with their stored types (an int8
+``flag_values`` is not an int64 one), followed by the SHA-256 digest of its little-endian values in
+C order. Strings hash alike whatever array type holds them (NetCDF gives Python objects, Zarr NumPy's
+StringDType). Same recipe, same environment: same hash, whatever the chunking or the scheduler.
 
 A digest per variable lets the values of two variables be read back and hashed at once, one per
 core (`content_hash`): SHA-256 itself is sequential, and it is what a run does last (1e7 points of
@@ -27,7 +27,8 @@ import numpy as np
 import xarray as xr
 
 ATTR = "stressfields_content_sha256"
-_SKIP_GLOBAL = {"history", ATTR}
+#: the ACDD ``id`` a file carries is its content hash; ``date_created``, like ``history``, is a time
+_SKIP_GLOBAL = {"history", "date_created", "id", ATTR}
 #: slabs read for hashing: small enough for reading and hashing to overlap, large enough to stream
 _READ_BYTES = 8 * 2 ** 20
 
@@ -42,6 +43,7 @@ def content_hash(ds: xr.Dataset, form: str = "current") -> str:
     (`FORMS`); per-variable digests are read two variables at a time (`_read_digests`)."""
     typed, nested = FORMS[form]
     attr = _typed if typed else _plain
+    ds = text_as_strings(ds)
     h = hashlib.sha256()
     attrs = {k: attr(v) for k, v in sorted(ds.attrs.items()) if k not in _SKIP_GLOBAL}
     h.update(json.dumps(attrs, sort_keys=True).encode())
@@ -60,6 +62,27 @@ def content_hash(ds: xr.Dataset, form: str = "current") -> str:
             for piece in _prefetched(_value_readers(var)):
                 h.update(piece)
     return h.hexdigest()
+
+
+def text_as_strings(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` (raw) with every UTF-8 char array (``_Encoding``, its last dimension the characters) as
+    the strings it holds: text hashes alike as a char array (written now: ParaView's CF reader crashes
+    on netCDF-4 strings) and as a netCDF-4 string (written before), so stored names keep their hash."""
+    chars = [n for n, v in ds.variables.items() if v.dtype == np.dtype("S1") and "_Encoding" in v.attrs and v.ndim]
+    if not chars:
+        return ds
+    replaced = {}
+    for name in chars:
+        var = ds.variables[name]
+        raw = np.asarray(var.values)
+        text = np.array([b"".join(row).decode(var.attrs["_Encoding"]) for row in raw.reshape(-1, raw.shape[-1])],
+                        dtype=object).reshape(raw.shape[:-1])
+        replaced[name] = xr.Variable(var.dims[:-1], text, {k: v for k, v in var.attrs.items() if k != "_Encoding"})
+    out = ds.copy(deep=False)
+    for name, var in replaced.items():
+        out[name] = var
+    return out.drop_dims([d for d in {ds.variables[n].dims[-1] for n in chars}
+                          if not any(d in v.dims for v in out.variables.values())], errors="ignore")
 
 
 def _value_readers(var):
@@ -143,6 +166,7 @@ def stamp(path: str | Path) -> str:
     digest, _ = file_hash(path)
     with netCDF4.Dataset(path, "a") as nc:
         nc.setncattr(ATTR, digest)
+        nc.setncattr("id", digest)
     return digest
 
 
@@ -190,6 +214,7 @@ def values_hash(ds: xr.Dataset) -> str:
     then the digest of its values (as `content_hash`), without any attribute. It changes when a value
     changes and not when a description does: what the reference suite's release gate holds fixed
     (`stressfields.suite`), where the content hash also covers titles, references and comments."""
+    ds = text_as_strings(ds)
     h = hashlib.sha256()
     names = sorted(map(str, ds.variables))
     digests = _read_digests(ds, names)

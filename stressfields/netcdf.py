@@ -456,14 +456,16 @@ def _encoding(ds: xr.Dataset) -> dict:
     """Per variable: no implicit fill value; HDF5 chunks aligned with the dask chunks (so a task
     writes whole chunks and a reader gets them back with `chunks={}`), at most `CHUNK_BYTES`;
     zlib with byte shuffling when the options (`writers.OutputOptions`) ask for compression;
-    `_FillValue` for the ``fill`` option."""
+    `_FillValue` for the ``fill`` option; text as UTF-8 char arrays."""
     from .writers import OutputOptions
 
     options = OutputOptions.from_attrs(ds.attrs)
     enc: dict = {}
     for name, var in ds.variables.items():
-        if var.dtype == object:
-            enc[name] = {}
+        if var.dtype.kind in "OUT":
+            # text as a char array with _Encoding = "utf-8" (xarray reads it back as str): ParaView's
+            # CF reader crashes on a netCDF-4 variable-length string coordinate
+            enc[name] = {"dtype": "S1"}
             continue
         e: dict = {"_FillValue": None}
         if options.nonfinite == "fill" and var.dtype.kind == "f" and name not in ds.coords:
@@ -522,11 +524,12 @@ def _cluster_compute(delayed, client, progress: bool) -> None:
 
 
 def progress_bar(show: bool):
+    """dask's progress bar, on stderr: stdout carries results only (`run -o x.nc > log` stays empty)."""
     if not show:
         return nullcontext()
     from dask.diagnostics import ProgressBar
 
-    return ProgressBar(minimum=0.5, dt=0.2)
+    return ProgressBar(minimum=0.5, dt=0.2, out=sys.stderr)
 
 
 def _remove(path: str) -> None:

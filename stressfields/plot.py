@@ -17,6 +17,10 @@ where the file holds the variable's per-case peak (``<name>_peak``, ``_peak_r``,
 that peak marked and quoted from the file (``plot_kind``: a recipe sweeping x and z whose table asks
 for no line, neither plot.x nor plot.hue, gets this section). A line along z is drawn as a depth
 profile, depth downwards.
+
+Physical values are drawn in engineering units (`engineering`: MPa or GPa, µm or mm, chosen from the
+data range), panel titles are the variables' short ``long_name`` in full, and flags (``region``,
+``validity``) get a categorical colour bar labelled with their ``flag_meanings``.
 """
 from __future__ import annotations
 
@@ -34,6 +38,14 @@ from .recipe import map_plane, plot_along, plot_kind
 MAX_PANELS = 6
 #: characters of a panel title (the variable's long_name, shortened): one line at 7 pt on a 4.6 in panel
 TITLE_CHARS = 70
+#: SI unit -> its engineering forms, largest first (factor of the SI value, unit): `engineering`
+PREFIXES = {
+    "Pa": ((1e9, "GPa"), (1e6, "MPa"), (1e3, "kPa"), (1.0, "Pa")),
+    # a pressure gradient under a micrometre contact: GPa/µm (1e15 Pa/m)
+    "Pa/m": ((1e15, "GPa/µm"), (1e12, "MPa/µm"), (1e9, "MPa/mm"), (1e6, "MPa/m"), (1e3, "kPa/m"), (1.0, "Pa/m")),
+    "m": ((1.0, "m"), (1e-3, "mm"), (1e-6, "µm"), (1e-9, "nm")),
+    "N": ((1e3, "kN"), (1.0, "N"), (1e-3, "mN"), (1e-6, "µN")),
+}
 
 
 def require_matplotlib():
@@ -91,7 +103,35 @@ def _save(fig, png: Path) -> None:
             os.unlink(tmp)
 
 
+def engineering(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with every variable in Pa, Pa/m, m or N rescaled to one engineering unit per SI unit
+    (`PREFIXES`): the largest whose values reach 1 (210e9 Pa -> 210 GPa, 8e-6 m -> 8 µm), so axes need
+    no 1e10 offset. One unit per SI unit keeps a field, its peak and its coordinates comparable."""
+    biggest: dict[str, float] = {}
+    for var in ds.variables.values():
+        units = var.attrs.get("units")
+        if units in PREFIXES and var.dtype.kind == "f" and var.size:
+            values = np.abs(np.asarray(var.values, dtype=float))
+            finite = values[np.isfinite(values)]
+            if finite.size:
+                biggest[units] = max(biggest.get(units, 0.0), float(finite.max()))
+    chosen = {u: next(((f, n) for f, n in PREFIXES[u] if top >= f), PREFIXES[u][-1])
+              for u, top in biggest.items()}
+    chosen = {u: fn for u, fn in chosen.items() if fn[1] != u}
+    if not chosen:
+        return ds
+    new_data, new_coords = {}, {}
+    for name, var in ds.variables.items():
+        units = var.attrs.get("units")
+        if units in chosen and var.dtype.kind == "f":
+            factor, unit = chosen[units]
+            scaled = xr.Variable(var.dims, np.asarray(var.values) / factor, {**var.attrs, "units": unit})
+            (new_coords if name in ds.coords else new_data)[name] = scaled
+    return ds.assign_coords(new_coords).assign(new_data)
+
+
 def _figure(plt, ds: xr.Dataset, recipe):
+    ds = engineering(ds)
     spec, swept = recipe.plot, recipe.swept
     kind = plot_kind(spec, swept)
     plane = map_plane(swept) if kind == "map" else None
@@ -127,6 +167,9 @@ def _map(ax, ds, name, plane=("x", "y")):
     da = ds[name]
     hold = {d: 0 for d in da.dims if d not in plane}
     da = da.isel(hold)
+    if "flag_values" in da.attrs:
+        _flags(ax, ds, da, plane)
+        return
     if plane == ("x", "z"):
         _section(ax, ds, da, hold)
         return
@@ -134,6 +177,27 @@ def _map(ax, ds, name, plane=("x", "y")):
     ax.set_aspect("equal")
     ax.set_xlabel(_label(ds["x"]))
     ax.set_ylabel(_label(ds["y"]))
+
+
+def _flags(ax, ds, da, plane):
+    """A flag over the plane: one colour per flag value, the colour bar labelled with the meanings."""
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+
+    codes = [int(v) for v in np.ravel(da.attrs["flag_values"])]
+    meanings = str(da.attrs.get("flag_meanings", "")).split()
+    colours = ListedColormap([f"C{i}" for i in range(len(codes))])
+    edges = [c - 0.5 for c in codes] + [codes[-1] + 0.5]
+    xs, ys = plane
+    mesh = ax.pcolormesh(ds[xs].values, ds[ys].values, da.transpose(ys, xs).values, cmap=colours,
+                         norm=BoundaryNorm(edges, len(codes)), shading="nearest")
+    bar = ax.figure.colorbar(mesh, ax=ax, ticks=codes)
+    bar.ax.set_yticklabels([m.replace("_", " ") for m in meanings] if len(meanings) == len(codes) else codes,
+                           fontsize=6)
+    if ys == "z":
+        ax.set_ylim(ds["z"].values.max(), ds["z"].values.min())        # depth downwards
+    ax.set_aspect("equal")
+    ax.set_xlabel(_label(ds[xs]))
+    ax.set_ylabel(_label(ds[ys]))
 
 
 def _lines(ax, ds, name, xname, along, hue, marker):
@@ -304,7 +368,7 @@ def _symbol(da) -> str:
     """The symbol a normalised variable is divided by ("p_m", "a", "(mu F_N)"), from its
     normalisation or the tail of its long_name ("... divided by the contact radius a"); "" if none
     or if the tail is a phrase rather than a symbol (more than 12 characters)."""
-    norm = da.attrs.get("normalisation") or da.attrs.get("long_name", "").partition(" divided by ")[2]
+    norm = da.attrs.get("normalisation") or da.attrs.get("description", "").partition(" divided by ")[2]
     norm = norm.split(",")[0].split(" = ")[0].split(" (")[0].strip()
     norm = norm.split()[-1] if norm.startswith("the ") else norm
     if len(norm) > 12:
@@ -324,8 +388,9 @@ def _label(da) -> str:
 
 
 def _bar_label(da) -> str:
-    """The colour bar: name, unit and the long_name up to its "at depth" / "divided by"."""
+    """The colour bar: name, unit and the long_name without the symbol it is divided by."""
     text = da.attrs.get("long_name", da.name)
-    for cut in (" divided by ", " at depth ", " at z = "):
-        text = text.split(cut)[0]
+    symbol = _symbol(da)
+    if symbol and text.endswith(f" / {symbol}"):
+        text = text[:-len(f" / {symbol}")]
     return textwrap.shorten(f"{_label(da)}: {text}", TITLE_CHARS, placeholder=" ...")

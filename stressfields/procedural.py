@@ -95,8 +95,22 @@ class Batches:
 
 
 def batches(recipe: str | Path | Mapping, batch_size: int, seed: int) -> Batches:
-    """(inputs, targets) batches of ``batch_size`` points of the recipe's ``[points.sample]`` box,
-    drawn with ``seed`` and computed on the fly; see the module docstring."""
+    """(inputs, targets) batches of points of the recipe's ``[points.sample]`` box, computed on the fly.
+
+    Parameters
+    ----------
+    recipe : str, Path or Mapping
+        A recipe with a ``[points.sample]`` table (method ``sobol`` or ``uniform``).
+    batch_size : int
+        Points per batch (the last one shorter).
+    seed : int
+        Replaces the sample's ``seed``: the same (recipe, seed) gives the same bytes.
+
+    Returns
+    -------
+    Batches
+        An iterable of (inputs, targets) NumPy arrays; see the module docstring.
+    """
     return Batches(recipe, batch_size, seed)
 
 

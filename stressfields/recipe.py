@@ -40,6 +40,7 @@ import math
 import os
 import re
 import stat
+import sys
 import tomllib
 import warnings
 from dataclasses import dataclass, field
@@ -137,22 +138,28 @@ class Recipe:
         return int(np.prod(list(self.shape.values()), dtype=np.int64)) if self.dims else 1
 
 
+#: the recipe path that means standard input (`stressfields validate -`, `stressfields run - -o x.nc`)
+STDIN = "-"
+
+
 def load(source: str | Path | Mapping, allow_read=()) -> Recipe:
-    """Parse and validate a recipe from a TOML path or a dict.
+    """Parse and validate a recipe from a TOML path (``"-"``: standard input, relative paths in it
+    then from the working directory) or a dict.
 
     A points file the recipe names (``[points] file``) is read only from inside the recipe's folder
-    (a dict's: the working directory), symbolic links resolved, or from inside one of the folders
-    ``allow_read`` lists (see `pointfiles.resolve`).
+    (a dict's or standard input's: the working directory), symbolic links resolved, or from inside one
+    of the folders ``allow_read`` lists (see `pointfiles.resolve`).
     """
     if isinstance(source, Mapping):
         data, text, label = dict(source), None, "recipe"
     else:
-        path = Path(source)
-        label = str(path)
-        why = name_problem(label)
+        stdin = str(source) == STDIN
+        path = Path.cwd() / "stdin.toml" if stdin else Path(source)
+        label = "<stdin>" if stdin else str(path)
+        why = None if stdin else name_problem(label)
         if why is not None:         # said with ascii(): the name itself may not print
             raise RecipeError([f"cannot read the recipe file: {why}"], ascii(label))
-        text = _read_text(path, label)
+        text = _decoded(sys.stdin.buffer.read(MAX_RECIPE_BYTES + 1), label) if stdin else _read_text(path, label)
         _check_shape(text, label)
         try:
             data = tomllib.loads(text)
@@ -186,6 +193,11 @@ def _read_text(path: Path, label: str) -> str:
         raise RecipeError([f"cannot read the recipe file: {exc.strerror}"], label) from None
     finally:
         os.close(fd)
+    return _decoded(raw, label)
+
+
+def _decoded(raw: bytes, label: str) -> str:
+    """Recipe bytes as text: at most MAX_RECIPE_BYTES of UTF-8."""
     if len(raw) > MAX_RECIPE_BYTES:
         raise RecipeError([f"the file has more than {MAX_RECIPE_BYTES:,} bytes; a recipe has at most "
                            f"{MAX_RECIPE_BYTES:,}"], label)

@@ -23,7 +23,7 @@ import time
 from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Protocol
+from typing import Any, Callable, Protocol
 
 import numpy as np
 import xarray as xr
@@ -102,7 +102,26 @@ class OutputOptions:
 
 
 def output_options(dtype: str = "float64", compression: int | None = None, nonfinite: str = "keep") -> OutputOptions:
-    """Checked `OutputOptions`; raises OutputError naming every problem at once."""
+    """The checked output options of `write`.
+
+    Parameters
+    ----------
+    dtype : {"float64", "float32"}
+        Storage of the float fields.
+    compression : int, optional
+        0-9: lossless compression level (None: the format's default).
+    nonfinite : {"keep", "nan", "fill"}
+        What becomes of +-inf and NaN at singular points.
+
+    Returns
+    -------
+    OutputOptions
+
+    Raises
+    ------
+    OutputError
+        Naming every problem at once.
+    """
     problems = output_option_problems(dtype, compression, nonfinite)
     if problems:
         raise OutputError("output options: " + "; ".join(problems))
@@ -131,14 +150,57 @@ def encode_choices(ds: xr.Dataset) -> xr.Dataset:
         attrs = {**var.attrs, "flag_values": codes, "flag_meanings": " ".join(labels)}
         coords[name] = xr.Variable((name,), codes, attrs)
         coords[f"{name}_name"] = xr.Variable((name,), np.array(labels, dtype=object),
-                                             {"long_name": f"{var.attrs.get('long_name', name)} (name)"})
+                                             {"long_name": f"{var.attrs.get('long_name', name)} (name)",
+                                              "coverage_content_type": "coordinate"})
     return xr.Dataset(data_vars, coords=coords, attrs=ds.attrs)
+
+
+def check_provenance(ds: xr.Dataset) -> None:
+    """Refuse a dataset whose coordinates go beyond the recipe it carries: merged from files of
+    other recipes by a reader that kept the first file's attributes (``xr.open_mfdataset``'s default).
+    Written as it is, the file would claim a recipe that did not make it. A selection of a recipe's
+    points (``ds.sel(mu=0.3)``) stays within it and passes; `reading.open_mfdataset` records every
+    source recipe instead of one (``stressfields_source_recipe_sha256``) and passes too."""
+    import json
+
+    from .reading import SOURCES_ATTR
+
+    canonical = ds.attrs.get("stressfields_recipe_canonical")
+    if not canonical or SOURCES_ATTR in ds.attrs:
+        return
+    try:
+        params = json.loads(canonical).get("parameters", {})
+    except (ValueError, AttributeError):
+        return
+    for dim in ds.dims:
+        swept = params.get(dim)
+        if dim not in ds.coords or not isinstance(swept, list) or ds[dim].ndim != 1:
+            continue
+        values = np.asarray(ds[dim].values)
+        if "flag_meanings" in ds[dim].attrs:        # a choice in its stored form: codes -> names
+            codes = np.ravel(ds[dim].attrs["flag_values"]).tolist()
+            names = dict(zip(codes, str(ds[dim].attrs["flag_meanings"]).split()))
+            values = np.array([names.get(v, v) for v in values.tolist()], dtype=object)
+        kind = object if values.dtype.kind in "OUT" or any(isinstance(v, str) for v in swept) else float
+        values = values.astype(kind)
+        beyond = ~np.isin(values, np.asarray(swept, dtype=kind))
+        if beyond.any():
+            recipe, first = str(ds.attrs.get("stressfields_recipe_sha256", ""))[:16], _plain(values[beyond][0])
+            raise OutputError(f"{dim} = {first!r} is not a value of the recipe this dataset carries "
+                              f"(stressfields_recipe_sha256 {recipe}): merged from files of other recipes? open them "
+                              "with sf.open_mfdataset, which records every source recipe")
+
+
+def _plain(value):
+    return value.item() if isinstance(value, np.generic) else value
 
 
 def prepare(ds: xr.Dataset, options: OutputOptions | None = None) -> xr.Dataset:
     """``ds`` in its on-disk form for ``options`` (default `OutputOptions()`): choices as CF flags,
-    float32 and non-finite values applied lazily, the options recorded in ``stressfields_output``."""
+    float32 and non-finite values applied lazily, the options recorded in ``stressfields_output``.
+    A dataset whose coordinates go beyond its own recipe is refused (`check_provenance`)."""
     options = options or OutputOptions()
+    check_provenance(ds)
     ds = encode_choices(ds)
     changed = {}
     for name, var in ds.data_vars.items():
@@ -363,18 +425,42 @@ def space_needed(ds: xr.Dataset, target: Path, options: OutputOptions | None = N
 
 
 def write(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False, parts: bool = False,
-          resume: bool = False, progress: bool = False, scheduler=None, dtype: str = "float64",
+          resume: bool = False, progress: bool = False, scheduler: Any = None, dtype: str = "float64",
           compression: int | None = None, nonfinite: str = "keep", space_check: bool = True) -> Path:
-    """Compute ``ds`` chunk by chunk and write it to ``path`` in the format its suffix names
-    (``.nc``: NetCDF, ``.zarr``: Zarr), atomically, with its content hash.
+    """Compute ``ds`` chunk by chunk and write it atomically, with its content hash.
 
-    ``parts=True`` writes in resumable parts along the first dimension; ``resume=True`` finishes an
-    interrupted parts run from its verified parts. ``scheduler`` is passed to dask (None: threads).
-    ``dtype``, ``compression`` and ``nonfinite`` are the output options (see `OutputOptions`).
-    ``space_check``: refuse, before writing anything, a dataset larger than the free space of the
-    target's file system (`check_space`; a resumed run counts what its parts already hold).
     One run at a time writes a target (`target_lock`); of two runs onto one new name exactly one
     publishes, the other raises OutputError.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A dataset of `generate` (or `open_dataset`, `open_mfdataset`; a selection of one).
+    path : str or path
+        The target: ``.nc`` NetCDF, ``.zarr`` a Zarr store.
+    overwrite : bool
+        Replace an existing target (never a device, FIFO or socket).
+    parts : bool
+        Write in resumable parts along the first dimension.
+    resume : bool
+        Finish an interrupted parts run from its verified parts.
+    progress : bool
+        dask's progress bar, on stderr.
+    scheduler : optional
+        Passed to dask (None: the local threads; a dask.distributed ``Client`` for a cluster).
+    dtype, compression, nonfinite
+        The output options (`output_options`).
+
+    Returns
+    -------
+    pathlib.Path
+        The written target.
+
+    Raises
+    ------
+    OutputError
+        For a target that exists (without ``overwrite``), a full disk, or a dataset whose
+        coordinates go beyond the recipe it carries (`check_provenance`); nothing is left behind.
     """
     options = output_options(dtype, compression, nonfinite)
     fmt = format_for(path)
@@ -391,9 +477,23 @@ def write(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False, p
 
 
 def export(source: str | os.PathLike, target: str | os.PathLike, *, overwrite: bool = False) -> Path:
-    """Copy a written dataset into another format (e.g. a cluster's Zarr store to NetCDF),
-    atomically; the source's content hash is verified first (damaged or unfinished input is refused)
-    and the copy gets its own content hash."""
+    """Copy a written dataset into another format (e.g. a cluster's Zarr store to NetCDF), atomically.
+
+    Parameters
+    ----------
+    source : str or path
+        A NetCDF file or Zarr store written by stressfields; its content hash is verified first
+        (damaged or unfinished input is refused).
+    target : str or path
+        The copy (format from its suffix); it gets its own content hash.
+    overwrite : bool
+        Replace an existing target.
+
+    Returns
+    -------
+    pathlib.Path
+        The written target.
+    """
     from .hashing import ATTR, verify
 
     source = Path(source)
@@ -403,6 +503,7 @@ def export(source: str | os.PathLike, target: str | os.PathLike, *, overwrite: b
     verify(source)
     with target_lock(target), format_for(source).read(source) as ds:
         ds.attrs.pop(ATTR, None)
+        ds.attrs.pop("id", None)
         for name in ds.variables:      # one format's encodings (compressors, chunk keys) mean nothing to another
             ds[name].encoding = {}
         # the stored dtypes and values are copied as they are; the recorded options (compression)
@@ -412,8 +513,21 @@ def export(source: str | os.PathLike, target: str | os.PathLike, *, overwrite: b
 
 
 def to_netcdf(ds: xr.Dataset, path: str | os.PathLike, *, overwrite: bool = False, progress: bool = False,
-              scheduler=None, **options) -> Path:
-    """`write` to NetCDF whatever the suffix (kept for the API's first users); ``options`` as for `write`."""
+              scheduler: Any = None, **options: Any) -> Path:
+    """`write` to NetCDF whatever the suffix (kept for the API's first users).
+
+    Parameters
+    ----------
+    ds, path, overwrite, progress, scheduler
+        As for `write`.
+    **options
+        ``dtype``, ``compression``, ``nonfinite`` as for `write`.
+
+    Returns
+    -------
+    pathlib.Path
+        The written file.
+    """
     options = output_options(**options)
     target = check_target(path, overwrite=overwrite)
     ds = prepare(ds, options)

@@ -50,6 +50,7 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
                 digest = content_hash(written)
             group = zarr.open_group(partial, mode="r+")
             group.attrs[ATTR] = digest
+            group.attrs["id"] = digest
             zarr.consolidate_metadata(partial)
         publish_folder(partial, target, overwrite)
     except OutputError:

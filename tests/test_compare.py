@@ -156,10 +156,15 @@ def test_comparison_file_has_units_everywhere(tmp_path):
                 assert var.attrs.get("units"), name
         assert "stressfields_recipe" in ds.attrs and "compare_recipe" in ds.attrs
         assert ds.attrs["compare_result"].startswith("not judged") and "compare_tolerance" not in ds.attrs
+        assert "compare" in ds.attrs["history"] and ds.attrs["Conventions"] == "CF-1.8, ACDD-1.3"
+        for name, var in ds.variables.items():
+            assert len(var.attrs["long_name"]) <= 40 and var.attrs["coverage_content_type"], name
     pytest.importorskip("compliance_checker")
-    from test_cf_and_docs import cf_failures
+    from test_cf_and_docs import acdd_high_failures
+    from test_clients import cf_warnings
 
-    assert cf_failures(out / "comparison.nc") == []
+    assert cf_warnings(out / "comparison.nc") == []         # strict: no warning either (history was one)
+    assert [m for m in acdd_high_failures(out / "comparison.nc") if "standard_name" not in m] == []
 
 
 def _csv(tmp_path, text: str) -> Path:

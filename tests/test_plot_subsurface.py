@@ -197,8 +197,10 @@ def test_an_x_z_sweep_draws_a_section_unless_the_table_asks_for_lines(table, kin
 def test_a_uniform_or_empty_section_still_draws(values):
     import xarray as xr
 
-    coords = {"x": ("x", np.linspace(-1, 1, 5), {"units": "1", "long_name": "x divided by the contact radius a"}),
-              "z": ("z", np.linspace(0, 1, 4), {"units": "1", "long_name": "depth divided by the contact radius a"})}
+    coords = {"x": ("x", np.linspace(-1, 1, 5), {"units": "1", "long_name": "x / a",
+                                               "description": "x divided by the contact radius a"}),
+              "z": ("z", np.linspace(0, 1, 4), {"units": "1", "long_name": "depth z / a",
+                                               "description": "depth divided by the contact radius a"})}
     ds = xr.Dataset({"tau_max": (("z", "x"), values, {"units": "1", "normalisation": "the mean pressure p_m"})},
                     coords=coords)
     recipe = type("R", (), {"plot": {}, "swept": ("z", "x"), "variables": ("tau_max",), "title": "t"})
@@ -206,4 +208,40 @@ def test_a_uniform_or_empty_section_still_draws(values):
     fig.canvas.draw()
     finite = np.isfinite(values).any()
     assert any(a.get_xlabel() == "x / a" for a in fig.axes) == finite
+    plt.close(fig)
+
+
+def test_physical_quick_looks_are_in_engineering_units(tmp_path):
+    """The steel cone (E = 210 GPa, x up to 8 µm): MPa/GPa and µm on the axes, no offset such as 1e10."""
+    data = tomllib.loads((ROOT / "recipes" / "steel_cone_physical.toml").read_text())
+    data["parameters"]["x"] = {"start": -8e-6, "stop": 8e-6, "num": 33}
+    recipe = load(data)
+    with sf.open_dataset(sf.write(sf.generate(data), tmp_path / "steel.nc")) as ds:
+        shown = plot.engineering(ds)
+        assert shown["x"].attrs["units"] == "µm" and shown["sigma_xx"].attrs["units"] in ("MPa", "GPa")
+        np.testing.assert_allclose(shown["x"].values, ds["x"].values * 1e6, rtol=1e-12)
+        factor = {"MPa": 1e6, "GPa": 1e9}[shown["sigma_xx"].attrs["units"]]
+        np.testing.assert_allclose(shown["sigma_xx"].values * factor, ds["sigma_xx"].values, rtol=1e-12)
+        fig = plot._figure(plt, ds, recipe)
+        fig.canvas.draw()
+        panels = [ax for ax in fig.axes if ax.get_visible() and ax.get_title()]
+        assert panels
+        for ax in panels:
+            assert "[µm]" in ax.get_xlabel()
+            assert ax.yaxis.get_offset_text().get_text() == "" and ax.xaxis.get_offset_text().get_text() == ""
+            assert ax.get_title() in {var.attrs.get("long_name") for var in ds.data_vars.values()}   # not cut
+        plt.close(fig)
+
+
+def test_flags_get_a_categorical_colour_bar():
+    data = tomllib.loads((ROOT / "recipes" / "hertz_mindlin_map.toml").read_text())
+    for key in ("x", "y"):
+        data["parameters"][key] = {"start": -1.5, "stop": 1.5, "num": 21}
+    data["plot"]["variables"] = ["sigma_xx", "region"]
+    ds = sf.generate(data)
+    fig = plot._figure(plt, ds, load(data))
+    bars = [ax for ax in fig.axes if [t.get_text() for t in ax.get_yticklabels()][:1] == ["outside contact"]]
+    assert len(bars) == 1
+    assert [t.get_text() for t in bars[0].get_yticklabels()] == ["outside contact", "stick", "slip",
+                                                                 "contact without tangential traction"]
     plt.close(fig)

@@ -153,9 +153,11 @@ def test_hertz_limit_for_one_nonperiodic_harmonic_in_physical_units():
 def test_normalised_scale_is_stated():
     ds = one_harmonic("periodic", 0.2, 0.0)
     for name in ("pressure", "mean_pressure", "peak_pressure", "error_estimate"):
-        assert "divided by p* = pi E* Delta_1/lambda_1" in ds[name].attrs["long_name"]
+        assert "divided by p* = pi E* Delta_1/lambda_1" in ds[name].attrs["description"]
+        assert ds[name].attrs["long_name"].endswith(" / p*")
         assert ds[name].attrs["units"] == "1"
-    assert "Delta_1" in ds.uz.attrs["long_name"] and "zero mean" in ds.uz.attrs["comment"]
+    assert "Delta_1" in ds.uz.attrs["long_name"] and "Delta_1" in ds.uz.attrs["description"]
+    assert "zero mean" in ds.uz.attrs["comment"]
     assert ds.attrs["stressfields_domain"] == "periodic"
 
 

@@ -39,52 +39,57 @@ SPATIAL = ("y", "x")  # x last: a line along x is contiguous on disk
 DEPTH = ("z",) + SPATIAL  # z before y, x: a surface-parallel plane is contiguous on disk
 
 # -- parameters shared by the three scenarios ------------------------------------------------
-NU = Parameter("nu", "Poisson's ratio of the half-space", default=0.3, low=0.0, high=0.5)
+NU = Parameter("nu", "Poisson's ratio of the half-space", default=0.3, low=0.0, high=0.5,
+               label="Poisson's ratio nu")
 MU = Parameter("mu", "coefficient of friction", default=0.0, low=0.0, high=10.0)
 UX0 = Parameter("ux0", "tangential rigid-body displacement u_x0 divided by the indentation depth delta "
                 "(0: normal load only; or give fx, or tangential_force in physical mode)", default=0.0, low=0.0,
-                high=1e3, when={"fx": (None,), "tangential_force": (None,)})
+                high=1e3, when={"fx": (None,), "tangential_force": (None,)}, label="u_x0 / delta")
 FX = Parameter("fx", "tangential force F_x divided by mu F_N (Cattaneo-Mindlin, instead of ux0; 1: onset of gross "
-               "slip)", low=0.0, high=1.0)
+               "slip)", low=0.0, high=1.0, label="F_x / (mu F_N)")
 # mode None, not "physical": a physical-mode parameter is required, and these are alternatives (the
 # check refuses them in normalised mode, in the words of the recipe's own mode check)
 TANGENTIAL_FORCE = Parameter("tangential_force", "tangential force F_x on the half-space along +x, at most mu F_N "
                              "(instead of ux0; physical mode)", units="N", low=0.0, high=1e15,
-                             when={"fx": (None,)})
+                             when={"fx": (None,)}, label="tangential force F_x")
 E = Parameter("E", "Young's modulus of the half-space (giving it switches to physical units)",
-              units="Pa", low=0.0, low_open=True, high=1e15, mode="physical")
+              units="Pa", low=0.0, low_open=True, high=1e15, mode="physical", label="Young's modulus E")
 DELTA = Parameter("delta", "indentation depth (or give normal_force instead)", units="m", low=0.0, low_open=True,
-                  high=1e3, mode="physical", when={"normal_force": (None,)})
+                  high=1e3, mode="physical", when={"normal_force": (None,)}, label="indentation depth delta")
 NORMAL_FORCE = Parameter("normal_force", "normal force F_N pressing the indenter (instead of delta; physical mode)",
-                         units="N", low=0.0, low_open=True, high=1e15)
+                         units="N", low=0.0, low_open=True, high=1e15, label="normal force F_N")
 #: the parameters above that only physical mode gives meaning to, though not declared physical
 PHYSICAL_LOADS = ("normal_force", "tangential_force")
 X = Parameter("x", "surface coordinate x (direction of the tangential load) divided by the contact "
               "radius a", units="1", units_physical="m", required=True, low=-1e6, high=1e6,
-              meaning_physical="surface coordinate x (direction of the tangential load)")
+              meaning_physical="surface coordinate x (direction of the tangential load)",
+              label="x / a", label_physical="x", axis="X")
 Y = Parameter("y", "surface coordinate y divided by the contact radius a", units="1",
-              units_physical="m", default=0.0, low=-1e6, high=1e6, meaning_physical="surface coordinate y")
+              units_physical="m", default=0.0, low=-1e6, high=1e6, meaning_physical="surface coordinate y",
+              label="y / a", label_physical="y", axis="Y")
 Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface)", units="1",
               units_physical="m", default=0.0, low=0.0,
-              high=1e6, meaning_physical="depth below the surface (0: the surface)")
+              high=1e6, meaning_physical="depth below the surface (0: the surface)",
+              label="depth z / a", label_physical="depth z", axis="Z")
 THETA = Parameter("theta", "inclination angle of the cone flank to the undeformed surface", units="rad",
                   low=0.0, low_open=True, high=math.pi / 2, high_open=True, sweepable=False,
-                  mode="physical")
+                  mode="physical", label="cone angle theta")
 R = Parameter("R", "radius of curvature of the paraboloid tip, f = r^2/(2R)", units="m", low=0.0,
-              low_open=True, high=1e6, sweepable=False, mode="physical")
+              low_open=True, high=1e6, sweepable=False, mode="physical", label="tip radius R")
 PROFILE = Parameter("profile", "indenter profile", kind=STR, default="power_law",
                     choices=("power_law", "tabulated", "flat_punch"), sweepable=False)
 N = Parameter("n", "exponent of the power-law profile f = A r^n", low=0.0, low_open=True, high=50.0,
-              required=True, sweepable=False, when={"profile": ("power_law",)})
+              required=True, sweepable=False, when={"profile": ("power_law",)}, label="power-law exponent n")
 A = Parameter("A", "amplitude of the power-law profile f = A r^n, with r and f in metres (units m^(1-n))",
               low=0.0, low_open=True, high=1e30, sweepable=False, mode="physical",
-              when={"profile": ("power_law",)})
+              when={"profile": ("power_law",)}, label="power-law amplitude A")
 RADIUS = Parameter("radius", "radius of the flat punch", units="m", low=0.0, low_open=True, high=1e6,
                    sweepable=False, mode="physical", when={"profile": ("flat_punch",)})
 PROFILE_R = Parameter("profile_r", "radii of the tabulated profile f(r), from 0 (normalised mode: "
                       "divided by the contact radius a, covering [0, 1])", units="1", units_physical="m",
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
-                      meaning_physical="radii of the tabulated profile f(r), from 0")
+                      meaning_physical="radii of the tabulated profile f(r), from 0",
+                      label="profile radii r / a", label_physical="profile radii r")
 PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-decreasing (normalised "
                       "mode: any length unit, the scale cancels), interpolated by a not-a-knot cubic spline; "
                       "data whose contact pressure would be tensile anywhere in the contact (p < -1e-9 p_m) "
@@ -92,7 +97,8 @@ PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-d
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
                       meaning_physical="heights f(r) of the tabulated profile, non-decreasing, interpolated by a "
                                        "not-a-knot cubic spline; data whose contact pressure would be tensile "
-                                       "anywhere in the contact (p < -1e-9 p_m) are refused by the recipe check")
+                                       "anywhere in the contact (p < -1e-9 p_m) are refused by the recipe check",
+                                       label="profile heights f")
 
 
 DISPLACEMENT_COMMENT = (
@@ -115,36 +121,41 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
     deep = "z" in spatial
     at = "at depth z (z = 0: the surface)" if deep else "at z = 0"
     stress = [Variable(f"sigma_{c}", f"{'stress' if deep else 'surface stress'} component sigma_{c} {at}",
-                       units_physical="Pa", scale=PM, dims=everything) for c in ("xx", "yy", "zz", "xy", "xz", "yz")]
+                       units_physical="Pa", scale=PM, dims=everything,
+                       label=f"stress sigma_{c}") for c in ("xx", "yy", "zz", "xy", "xz", "yz")]
     singular = ("cone tip r = 0; dpdz at the contact edge r = a and the stick edge r = c; flat-punch edge")
     return tuple(stress) + (
         Variable("von_mises", f"von Mises equivalent stress sqrt(3 J2) {at}", units_physical="Pa",
-                 scale=PM, dims=everything),
-        Variable("sigma_1", f"largest principal stress {at}", units_physical="Pa", scale=PM, dims=everything),
+                 scale=PM, dims=everything, label="von Mises stress"),
+        Variable("sigma_1", f"largest principal stress {at}", units_physical="Pa", scale=PM, dims=everything,
+                 label="sigma_1 (largest)"),
         Variable("sigma_2", f"intermediate principal stress {at}", units_physical="Pa", scale=PM,
-                 dims=everything),
-        Variable("sigma_3", f"smallest principal stress {at}", units_physical="Pa", scale=PM, dims=everything),
+                 dims=everything, label="sigma_2 (middle)"),
+        Variable("sigma_3", f"smallest principal stress {at}", units_physical="Pa", scale=PM, dims=everything,
+                 label="sigma_3 (smallest)"),
         Variable("tau_max", f"maximum shear stress (sigma_1 - sigma_3)/2 {at}", units_physical="Pa", scale=PM,
-                 dims=everything),
+                 dims=everything, label="shear stress tau_max"),
         Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z "
                  + ("(at z = 0: the limit z -> 0+)" if deep else "at z = 0+"),
                  units_physical="Pa/m", scale="p_m/a, with p_m = F_N/(pi a^2) and a the contact radius",
-                 dims=everything),
+                 dims=everything, label="gradient dp_h/dz"),
     ) + tuple(
         Variable(f"u_{c}", f"displacement component u_{c} {at}" + (" (positive into the body)" if c == "z" else ""),
                  units_physical="m", scale="the indentation depth delta", dims=everything,
-                 comment=DISPLACEMENT_COMMENT) for c in "xyz"
+                 comment=DISPLACEMENT_COMMENT, label=f"displacement u_{c}") for c in "xyz"
     ) + (
         Variable("stick_radius", "radius c of the stick zone (Cattaneo-Mindlin; 0 in gross slip; a under "
-                 "normal load only)", units_physical="m", scale="the contact radius a", dims=case),
+                 "normal load only)", units_physical="m", scale="the contact radius a", dims=case,
+                 label="stick radius c"),
         Variable("mean_pressure", "mean contact pressure p_m = F_N/(pi a^2)", units_physical="Pa",
-                 scale="the effective modulus E* = E/(1-nu^2)", dims=load),
+                 scale="the effective modulus E* = E/(1-nu^2)", dims=load, label="mean pressure p_m"),
         Variable("contact_radius", "contact radius a", units="m", dims=load, mode="physical",
                  recorded_when=("normal_force",)),
         Variable("normal_force", "normal force F_N", units="N", dims=load, mode="physical"),
         Variable("delta", "indentation depth delta", units="m", dims=load, mode="physical",
-                 recorded_when=("normal_force",)),
+                 recorded_when=("normal_force",), label="indentation depth delta"),
         Variable("region", "contact region of the surface point", dtype="int8", dims=surface,
+                 label="contact region",
                  flag_values=(0, 1, 2, 3),
                  flag_meanings=("outside_contact", "stick", "slip", "contact_without_tangential_traction"),
                  comment=("Of the surface point (x, y) above the field point: independent of the depth z."
@@ -160,7 +171,7 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                                       "because the point lies closer than ~1e-100 a to the axis or the surface, "
                                       "which the 1-D routes do not resolve. " if deep else "")
                          + "Only the variables in this file are considered.",
-                 always=True),
+                 always=True, label="validity of the field values"),
     ) + (tangential_loads(case) if tangential else ())
 
 
@@ -170,12 +181,12 @@ def tangential_loads(case: tuple[str, ...]) -> tuple[Variable, ...]:
         Variable("ux0", "tangential rigid-body displacement u_x0 divided by the indentation depth delta "
                  "(Cattaneo-Mindlin, docs/theory/axisymmetric.md (A32))", dims=case,
                  recorded_when=("fx", "tangential_force"),
-                 comment="at fx = 1 the displacement of the onset of gross slip, mu E*/G*"),
+                 comment="at fx = 1 the displacement of the onset of gross slip, mu E*/G*", label="u_x0 / delta"),
         Variable("fx", "tangential force F_x divided by mu F_N (1 in gross slip)", dims=case,
                  recorded_when=("tangential_force",),
-                 comment="at mu = 0 with ux0 > 0 the limit mu -> 0+ (1, gross slip)"),
+                 comment="at mu = 0 with ux0 > 0 the limit mu -> 0+ (1, gross slip)", label="F_x / (mu F_N)"),
         Variable("tangential_force", "tangential force F_x on the half-space along +x", units="N", dims=case,
-                 mode="physical", recorded_when=("fx",)),
+                 mode="physical", recorded_when=("fx",), label="tangential force F_x"),
     )
 
 
@@ -560,12 +571,13 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
                        ("von_mises", "von Mises equivalent stress sqrt(3 J2)")):
         out += [
             Variable(f"{name}_peak", f"largest {what} in the half-space z >= 0", units_physical="Pa",
-                     scale=PM, dims=case, comment=_SEARCH),
+                     scale=PM, dims=case, comment=_SEARCH, label=f"peak {name}"),
             Variable(f"{name}_peak_r", f"x coordinate (on the load axis y = 0; the radius r >= 0 under normal "
                      f"load) of the largest {what}", units_physical="m", scale="the contact radius a",
-                     dims=case, comment=_SEARCH),
+                     dims=case, comment=_SEARCH, label=f"x of peak {name}"),
             Variable(f"{name}_peak_depth", f"depth z below the surface of the largest {what}",
-                     units_physical="m", scale="the contact radius a", dims=case, comment=_SEARCH),
+                     units_physical="m", scale="the contact radius a", dims=case, comment=_SEARCH,
+                     label=f"z of peak {name}"),
         ]
     out.append(Variable(
         "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
@@ -577,7 +589,7 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
                 "a surface singular point (a direction-dependent limit): the peaks are NaN; 4: the refinement "
                 "did not converge or ended on the border of the search box (|x| = 2a, z = 3a): the values are "
                 "the best found, not the peaks. Written whenever a peak variable is.",
-        always=tuple(v.name for v in out)))
+        always=tuple(v.name for v in out), label="validity of the peaks"))
     return tuple(out)
 
 

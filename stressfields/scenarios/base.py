@@ -17,6 +17,25 @@ FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
 #: (a tabulated axisymmetric profile on 100 points: 0.18 s at 100 samples, 4.5 s at 1000, 17.6 s
 #: at 2000; a history on 10 points: 0.17 s at 10 steps, 4.2 s at 100)
 MAX_ARRAY_SIZE = 1000
+#: the longest label (the files' ``long_name``); the full sentence goes in ``description``
+LABEL_CHARS = 40
+#: xarray's default plot label "<long_name> [<units>]" is wrapped at 30 characters: a label with its
+#: units within this fits one line (`plot_label`, checked for every declaration by the tests)
+PLOT_LABEL_CHARS = 30
+#: the symbol of each normalisation scale (a Variable's ``scale``), as a normalised variable's label
+#: says it ("stress sigma_xx / p_m"); tests/test_cf_and_docs.py checks that every scale has one
+SCALE_SYMBOLS = {
+    "the mean contact pressure p_m = F_N/(pi a^2)": "p_m",
+    "p_m/a, with p_m = F_N/(pi a^2) and a the contact radius": "(p_m/a)",
+    "the effective modulus E* = E/(1-nu^2)": "E*",
+    "the contact radius a": "a",
+    "the contact half-width a": "a",
+    "the indentation depth delta": "delta",
+    "mu F_N, the normal force times the coefficient of friction": "(mu F_N)",
+    "mu F_N delta (coefficient of friction times normal force times indentation depth)": "(mu F_N delta)",
+    "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)": "p*",
+    "the amplitude Delta_1 of the base wave": "Delta_1",
+}
 
 
 class Options(TypedDict):
@@ -52,7 +71,11 @@ class Parameter:
     ``units`` is the UDUNITS string in the default (normalised) mode and ``units_physical`` the
     one used when the recipe switches to physical units (``None``: the same in both modes);
     ``meaning_physical`` likewise replaces ``meaning`` in physical mode, for a parameter whose
-    normalised meaning says what it is divided by (``None``: the same in both modes).
+    normalised meaning says what it is divided by (``None``: the same in both modes). ``label``
+    (and ``label_physical``) is the short name of at most LABEL_CHARS characters written as the
+    coordinate's ``long_name``, the meaning going to ``description``; without one the meaning is
+    the label, so a meaning longer than that needs a label. ``axis`` ("X", "Y" or "Z") marks a
+    spatial coordinate for CF-aware readers (`cf.coord_attrs`).
     """
 
     name: str
@@ -75,6 +98,9 @@ class Parameter:
     when: Mapping[str, tuple] = field(default_factory=dict)
     #: ARRAY parameters: the most values accepted (None: MAX_ARRAY_SIZE)
     max_size: int | None = None
+    label: str | None = None
+    label_physical: str | None = None
+    axis: str | None = None
 
     @property
     def size_limit(self) -> int:
@@ -85,8 +111,18 @@ class Parameter:
         return self.units_physical if (physical and self.units_physical) else self.units
 
     def meaning_in(self, physical: bool) -> str:
-        """The meaning in the mode, as said in the files' ``long_name``."""
+        """The meaning in the mode, as said in the files' ``description``."""
         return self.meaning_physical if (physical and self.meaning_physical) else self.meaning
+
+    def label_in(self, physical: bool) -> str:
+        """The short name in the mode, as said in the files' ``long_name`` (at most LABEL_CHARS)."""
+        if physical and self.label_physical:
+            return self.label_physical
+        return self.label or self.meaning_in(physical)
+
+    def plot_label(self, physical: bool) -> str:
+        """The label xarray's ``.plot()`` draws: the long_name and the units in brackets."""
+        return _with_units(self.label_in(physical), "" if self.choices else self.units_in(physical))
 
     def condition(self) -> str:
         """The `when` condition in words: keys joined by 'and', values of one key by 'or'; the value
@@ -162,7 +198,10 @@ class Variable:
 
     ``dims`` lists the parameters it depends on (a swept one becomes a dimension of the
     variable); ``None`` means all of them. ``scale`` names the reference scale of a normalised
-    variable; it becomes the ``normalisation`` attribute and is said in ``long_name``.
+    variable; it becomes the ``normalisation`` attribute and is said in ``description`` and, by its
+    symbol (SCALE_SYMBOLS), in the label. ``long_name`` is the full sentence (the files'
+    ``description``); ``label`` the short name of the files' ``long_name`` (`label_in`; without one
+    ``long_name`` serves, so a ``long_name`` longer than LABEL_CHARS needs a label).
     """
 
     name: str
@@ -185,14 +224,28 @@ class Variable:
     #: joins the default variable list when the recipe gives one of these parameters: a load derived
     #: from them (e.g. delta when normal_force is given); recipes giving none keep their list and hash
     recorded_when: tuple[str, ...] = ()
+    label: str | None = None
 
     def units_in(self, physical: bool) -> str:
         return self.units_physical if (physical and self.units_physical) else self.units
 
     def long_name_in(self, physical: bool) -> str:
+        """The full sentence in the mode, as said in the files' ``description``."""
         if self.scale and not physical:
             return f"{self.long_name} divided by {self.scale}"
         return self.long_name
+
+    def label_in(self, physical: bool) -> str:
+        """The short name in the mode, as said in the files' ``long_name``: the label, then in
+        normalised mode " / " and the symbol of the scale ("stress sigma_xx / p_m")."""
+        text = self.label or self.long_name
+        if self.scale and not physical:
+            return f"{text} / {SCALE_SYMBOLS.get(self.scale, self.scale)}"
+        return text
+
+    def plot_label(self, physical: bool) -> str:
+        """The label xarray's ``.plot()`` draws: the long_name and the units in brackets."""
+        return _with_units(self.label_in(physical), "" if self.flag_values else self.units_in(physical))
 
 
 @dataclass(frozen=True)
@@ -276,6 +329,10 @@ def table_step_problem(name: str, r) -> str | None:
         return (f"{name} has a step of {step:.3g}, below {MIN_TABLE_STEP:g} of its span {span:.6g}; "
                 "merge samples closer than that")
     return None
+
+
+def _with_units(label: str, units: str) -> str:
+    return f"{label} [{units}]" if units else label
 
 
 def _fmt(v: float) -> str:

@@ -30,33 +30,39 @@ BIG = 1e30
 # -- parameters ---------------------------------------------------------------------------------
 PROFILE = Parameter("profile", "indenter profile (parabolic: r^2/(2R); conical: r tan(theta); power_law: "
                     "A r^n; tabulated: spline through profile_r, profile_f)", kind=STR, default="parabolic",
-                    choices=("parabolic", "conical", "power_law", "tabulated"), sweepable=False)
+                    choices=("parabolic", "conical", "power_law", "tabulated"), sweepable=False,
+                    label="indenter profile")
 R = Parameter("R", "radius of curvature of the paraboloid f = r^2/(2R)", units="m", low=0.0, low_open=True,
-              high=1e6, required=True, when={"profile": ("parabolic",)})
+              high=1e6, required=True, when={"profile": ("parabolic",)}, label="tip radius R")
 TAN = Parameter("tan_theta", "slope tan(theta) of the cone f = r tan(theta)", low=0.0, low_open=True, high=1e6,
-                required=True, when={"profile": ("conical",)})
+                required=True, when={"profile": ("conical",)}, label="cone slope tan(theta)")
 N = Parameter("n", "exponent of the power-law profile f = A r^n", low=0.0, low_open=True, high=50.0,
-              required=True, when={"profile": ("power_law",)})
+              required=True, when={"profile": ("power_law",)}, label="power-law exponent n")
 # units depend on n (m^(1-n)), which UDUNITS cannot express: the number is declared "1" and its SI
 # meaning is said in the text, as in the axisymmetric scenario
 A = Parameter("A", "amplitude of the power-law profile f = A r^n, with r and f in metres (SI units m^(1-n))",
-              low=0.0, low_open=True, high=BIG, required=True, when={"profile": ("power_law",)})
+              low=0.0, low_open=True, high=BIG, required=True, when={"profile": ("power_law",)},
+              label="power-law amplitude A")
 # the graded integral route costs ~ samples^2 (2 points: 0.57 s at 25 samples, 5.6 s at 100, 166 s at 500)
 PROFILE_R = Parameter("profile_r", "radii of the tabulated profile f(r), from 0, strictly increasing", units="m",
-                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)}, max_size=100)
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)}, max_size=100,
+                      label="profile radii r")
 PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, strictly increasing", units="m",
-                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)}, max_size=100)
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)}, max_size=100,
+                      label="profile heights f")
 E0 = Parameter("E0", "Young's modulus E0 at the characteristic depth c0, E(z) = E0 (z/c0)^k", units="Pa",
-               low=0.0, low_open=True, high=1e15, required=True)
+               low=0.0, low_open=True, high=1e15, required=True, label="modulus E0")
 C0 = Parameter("c0", "characteristic depth c0 at which E = E0", units="m", default=1.0, low=0.0, low_open=True,
-               high=1e6)
-NU = Parameter("nu", "Poisson's ratio (constant with depth)", default=0.3, low=-1.0, low_open=True, high=0.5)
-K = Parameter("k", "grading exponent k of E(z) = E0 (z/c0)^k", default=0.5, low=0.0, high=1.0, high_open=True)
+               high=1e6, label="depth c0 of E0")
+NU = Parameter("nu", "Poisson's ratio (constant with depth)", default=0.3, low=-1.0, low_open=True, high=0.5,
+               label="Poisson's ratio nu")
+K = Parameter("k", "grading exponent k of E(z) = E0 (z/c0)^k", default=0.5, low=0.0, high=1.0, high_open=True,
+              label="grading exponent k")
 # no two names differ only by case (CF 2.3; compliance-checker warns on r/R and a/A in one file): the
 # contact radius is named as in the axisymmetric scenarios, the radial coordinate rho = r/a
 A_RAD = Parameter("contact_radius", "contact radius a", units="m", low=0.0, low_open=True, high=1e6, required=True)
 R_REL = Parameter("rho", "radial coordinate rho = r/a: the radius r divided by the contact radius a", default=0.0,
-                  low=0.0, high=1e6)
+                  low=0.0, high=1e6, label="radius rho = r/a")
 #: the former names of the two above, told to a recipe that still uses them
 RENAMED = {"a": "contact_radius", "r": "rho"}
 GEOMETRY = (PROFILE, R, TAN, N, A, PROFILE_R, PROFILE_F)
@@ -154,7 +160,8 @@ def _validity(field_dims, fields, comment):
     """The validity flag of ``fields``: evaluated from them whether or not the file holds them, so that
     it is the same requested alone, beside them, or beside other variables."""
     return Variable("validity", f"validity of {' and '.join(fields)}", dims=field_dims, **VALIDITY,
-                    comment=f"{comment}. It flags {' and '.join(fields)}, evaluated whether or not the file holds them")
+                    comment=f"{comment}. It flags {' and '.join(fields)}, evaluated whether or not the file holds them",
+                    label=f"validity of {' and '.join(fields)}")
 
 
 def _flag(entry, known, flagged, out, p, options, **values):
@@ -171,12 +178,14 @@ N_DIMS = ("E0", "c0", "k", "nu", "contact_radius") + GEOM
 N_FLAGGED = ("pressure", "uz")
 N_VARS = (
     Variable("kappa", "profile scaling factor g(a)/f(a) of the MDR transform (eq. 9: kappa(n, k) = "
-             "(n/2) B(n/2, (1+k)/2) for a power law f = A r^n)", dims=("k", "contact_radius") + GEOM),
+             "(n/2) B(n/2, (1+k)/2) for a power law f = A r^n)", dims=("k", "contact_radius") + GEOM,
+             label="scaling factor kappa"),
     Variable("depth", "indentation depth d(a)", units="m", dims=("k", "contact_radius") + GEOM),
     Variable("normal_force", "normal force F_N(a)", units="N", dims=N_DIMS),
-    Variable("pressure", "contact pressure p(r; a) (compressive positive)", units="Pa", dims=N_DIMS + ("rho",)),
+    Variable("pressure", "contact pressure p(r; a) (compressive positive)", units="Pa", dims=N_DIMS + ("rho",),
+             label="contact pressure p(r; a)"),
     Variable("uz", "normal surface displacement u_z(r; a), positive into the body", units="m",
-             dims=("k", "contact_radius") + GEOM + ("rho",)),
+             dims=("k", "contact_radius") + GEOM + ("rho",), label="displacement u_z(r; a)"),
     _validity(N_DIMS + ("rho",), N_FLAGGED, "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
               "cone at k = 0), where the exact pressure is unbounded"),
 )
@@ -217,27 +226,33 @@ GRADED_NORMAL = Scenario(
 )
 
 # -- graded_adhesive -----------------------------------------------------------------------------
-DGAM = Parameter("delta_gamma", "work of adhesion Delta gamma", units="J/m^2", low=0.0, high=1e6, required=True)
+DGAM = Parameter("delta_gamma", "work of adhesion Delta gamma", units="J/m^2", low=0.0, high=1e6, required=True,
+                 label="work of adhesion")
 CONTROL = Parameter("control", "loading condition at the critical (pull-off) point", kind=STR,
                     choices=("fixed_load", "fixed_grips"),
-                    default=np.array(["fixed_load", "fixed_grips"], dtype=object))
+                    default=np.array(["fixed_load", "fixed_grips"], dtype=object),
+                    label="loading condition at pull-off")
 AD_DIMS = ("E0", "c0", "k", "nu", "delta_gamma", "contact_radius") + GEOM
 CRIT_DIMS = ("E0", "c0", "k", "nu", "delta_gamma") + GEOM + ("control",)
 AD_VARS = (
     Variable("depth", "indentation depth d(a) with adhesion (negative: below the undeformed surface)",
-             units="m", dims=AD_DIMS),
-    Variable("normal_force", "normal force F_N(a) with adhesion (negative: tensile)", units="N", dims=AD_DIMS),
+             units="m", dims=AD_DIMS, label="indentation depth d(a)"),
+    Variable("normal_force", "normal force F_N(a) with adhesion (negative: tensile)", units="N", dims=AD_DIMS,
+             label="normal force F_N(a)"),
     Variable("pressure", "contact pressure p(r; a) with adhesion (compressive positive; -inf at r = a)",
-             units="Pa", dims=AD_DIMS + ("rho",)),
-    Variable("critical_radius", "critical contact radius a_c at pull-off", units="m", dims=CRIT_DIMS),
-    Variable("critical_depth", "indentation depth d_c at pull-off", units="m", dims=CRIT_DIMS),
-    Variable("critical_force", "normal force F_c at pull-off (negative: tensile)", units="N", dims=CRIT_DIMS),
+             units="Pa", dims=AD_DIMS + ("rho",), label="contact pressure p(r; a)"),
+    Variable("critical_radius", "critical contact radius a_c at pull-off", units="m", dims=CRIT_DIMS,
+             label="pull-off radius a_c"),
+    Variable("critical_depth", "indentation depth d_c at pull-off", units="m", dims=CRIT_DIMS,
+             label="pull-off depth d_c"),
+    Variable("critical_force", "normal force F_c at pull-off (negative: tensile)", units="N", dims=CRIT_DIMS,
+             label="pull-off force F_c"),
     _validity(AD_DIMS + ("rho",), ("pressure",), "1: pressure = -inf at r = a (the adhesive edge singularity, "
               "eq. 37) or +inf at r = 0 for a profile with n + k <= 1, where the exact pressure is unbounded"),
     Variable("critical_validity", "validity of the critical (pull-off) values", dims=CRIT_DIMS, dtype="int8",
              flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
              comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
-                     "tabulated profile; the critical values are NaN there"),
+                     "tabulated profile; the critical values are NaN there", label="validity at pull-off"),
 )
 
 
@@ -271,46 +286,50 @@ GRADED_ADHESIVE = Scenario(
 # -- graded_tangential ---------------------------------------------------------------------------
 BODY2 = Parameter("body2", "counter-body: identical (the same graded material, eqs. 46-47), rigid, or elastic "
                   "(graded with the same k and c0, modulus E0_2 and Poisson's ratio nu_2)", kind=STR,
-                  default="identical", choices=("identical", "rigid", "elastic"), sweepable=False)
+                  default="identical", choices=("identical", "rigid", "elastic"), sweepable=False, label="counter-body")
 E0_2 = Parameter("E0_2", "modulus E0 of the elastic counter-body at depth c0", units="Pa", low=0.0, low_open=True,
-                 high=1e15, required=True, when={"body2": ("elastic",)})
+                 high=1e15, required=True, when={"body2": ("elastic",)}, label="counter-body modulus E0_2")
 NU_2 = Parameter("nu_2", "Poisson's ratio of the elastic counter-body (with poisson = 'holl_ratio': 1/(2+k) too)",
                  low=-1.0, low_open=True, high=0.5, required=True,
-                 when={"body2": ("elastic",), "poisson": ("given",)})
+                 when={"body2": ("elastic",), "poisson": ("given",)}, label="counter-body nu_2")
 POISSON = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu) or 'holl_ratio' (nu = 1/(2+k) for "
                     "every graded body, so that nu follows a sweep of k; Fig. 10)", kind=STR, default="given",
-                    choices=("given", "holl_ratio"), sweepable=False)
+                    choices=("given", "holl_ratio"), sweepable=False, label="Poisson's ratio rule")
 NU_T = Parameter(NU.name, NU.meaning, default=NU.default, low=NU.low, low_open=True, high=NU.high,
-                 when={"poisson": ("given",)})
+                 when={"poisson": ("given",)}, label=NU.label)
 UNCOUPLED = Parameter("uncoupled_approximation", "where the normal and tangential problems do not decouple (sec. "
                       "5): 'reject' the recipe, or 'flag' the points (variable coupling) and compute the uncoupled "
-                      "approximation", kind=STR, default="reject", choices=("reject", "flag"), sweepable=False)
+                      "approximation", kind=STR, default="reject", choices=("reject", "flag"), sweepable=False,
+                      label="uncoupled approximation")
 MU = Parameter("mu", "coefficient of friction", default=0.3, low=0.0, low_open=True, high=10.0)
 FX = Parameter("fx", "tangential force F_x divided by mu F_N (force control; 1: onset of gross slip)",
-               default=0.0, low=0.0, high=1.0)
+               default=0.0, low=0.0, high=1.0, label="F_x / (mu F_N)")
 DELTA_X = Parameter("delta_x", "imposed tangential displacement delta_x (displacement control; the force "
                     "saturates at mu F_N once delta_x >= max_tangential_displacement)", units="m", default=0.0,
-                    low=0.0, high=1e3)
+                    low=0.0, high=1e3, label="tangential shift delta_x")
 PAIR = ("E0", "k", "nu", "E0_2", "nu_2")
 T_FIELD = PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx", "rho")
 T_VARS = (
     Variable("stick_radius", "radius c of the stick zone divided by the contact radius a (eq. 51)",
-             dims=("k", "contact_radius") + GEOM + ("fx",)),
+             dims=("k", "contact_radius") + GEOM + ("fx",), label="stick radius c / a"),
     Variable("tangential_displacement", "relative tangential displacement delta_x of the bodies (eq. 49)",
-             units="m", dims=PAIR + ("mu", "contact_radius") + GEOM + ("fx",)),
+             units="m", dims=PAIR + ("mu", "contact_radius") + GEOM + ("fx",), label="tangential shift delta_x"),
     Variable("max_tangential_displacement", "tangential displacement delta_x,max at the onset of gross slip "
-             "(eq. 50)", units="m", dims=PAIR + ("mu", "contact_radius") + GEOM),
+             "(eq. 50)", units="m", dims=PAIR + ("mu", "contact_radius") + GEOM,
+             label="delta_x at gross slip"),
     Variable("force_ratio", "tangential force F_x divided by mu F_N under the imposed displacement delta_x "
-             "(eq. 51; 1 in gross slip)", dims=PAIR + ("mu", "contact_radius") + GEOM + ("delta_x",)),
+             "(eq. 51; 1 in gross slip)", dims=PAIR + ("mu", "contact_radius") + GEOM + ("delta_x",),
+             label="F_x / (mu F_N)"),
     Variable("normal_force", "normal force F_N pressing the bodies together at contact radius a", units="N",
-             dims=PAIR + ("c0", "contact_radius") + GEOM),
+             dims=PAIR + ("c0", "contact_radius") + GEOM, label="normal force F_N"),
     Variable("shear_traction", "tangential traction tau_x(r) = mu [p(r; a) - p(r; c)] on the lower body "
-             "(eq. 45)", units="Pa", dims=T_FIELD),
+             "(eq. 45)", units="Pa", dims=T_FIELD, label="shear traction tau_x(r)"),
     # always: joins every variable that depends on the body pair
     Variable("coupling", "normal-tangential coupling of the body pair", dims=PAIR, dtype="int8", flag_values=(0, 1),
              flag_meanings=("decoupled_exact", "uncoupled_approximation"), always=True,
              comment="0: identical bodies, or nu = 1/(2+k) for every elastic body (sec. 5): the MDR solution is "
-                     "exact; 1: the coupling is neglected (only with uncoupled_approximation = 'flag')"),
+                     "exact; 1: the coupling is neglected (only with uncoupled_approximation = 'flag')",
+                     label="normal-tangential coupling"),
     _validity(T_FIELD, ("shear_traction",), "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
               "with n + k <= 1; under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) "
               "and flagged 0"),

@@ -29,11 +29,13 @@ from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
 HISTORY = Parameter("ux0_history", "tangential rigid-body displacements u_x0 divided by the indentation depth "
                     "delta, in order, starting from the unloaded state u_x0 = 0 (each step is reached "
                     "monotonically from the previous one)", kind=ARRAY, required=True, sweepable=False,
-                    max_size=200)   # cost grows with the steps: 10 points, 0.17 s at 10 steps, 4.2 s at 100
+                    # cost grows with the steps: 10 points, 0.17 s at 10 steps, 4.2 s at 100
+                    max_size=200, label="history of u_x0 / delta")
 AMPLITUDE = Parameter("amplitude", "factor multiplying every value of ux0_history (sweep it to run one "
-                      "history at several amplitudes)", default=1.0, low=0.0, high=1e3)
+                      "history at several amplitudes)", default=1.0, low=0.0, high=1e3,
+                      label="amplitude factor")
 STEP = Parameter("step", "index of the step in ux0_history, from 0 (default: every step)", kind=INT,
-                 low=0, high=10_000_000)
+                 low=0, high=10_000_000, label="step index")
 PROFILE = Parameter("profile", "indenter profile", kind=STR, default="paraboloid",
                     choices=("paraboloid", "cone", "power_law", "tabulated"), sweepable=False)
 THETA_H = dataclasses.replace(THETA, when={"profile": ("cone",)})
@@ -60,16 +62,18 @@ def _history_variables() -> tuple[Variable, ...]:
     return tuple(base) + (
         Variable("stick_radius", "radius of the zone that does not slip during the move into this step (stick "
                  "radius of the current loading branch; a before any tangential displacement, 0 in gross slip)",
-                 units_physical="m", scale="the contact radius a", dims=CASE),
+                 units_physical="m", scale="the contact radius a", dims=CASE, label="stick radius c"),
         Variable("tangential_force", "tangential force F_x transmitted to the half-space (resultant of the shear "
                  "traction, along +x)", units_physical="N",
                  scale="mu F_N, the normal force times the coefficient of friction", dims=CASE,
-                 comment="at mu = 0 the normalised value is the limit mu -> 0+ (+-1, gross slip)"),
+                 comment="at mu = 0 the normalised value is the limit mu -> 0+ (+-1, gross slip)",
+                 label="tangential F_x"),
         Variable("dissipated_energy", "energy dissipated by friction from the unloaded start up to this step",
                  units_physical="J", scale="mu F_N delta (coefficient of friction times normal force times "
                  "indentation depth)", dims=CASE,
                  comment="over a closed cycle the difference equals the area of the F_x-u_x0 loop; at mu = 0 "
-                         "the normalised value is the limit mu -> 0+ (the sum of |du_x0|/delta)"),
+                         "the normalised value is the limit mu -> 0+ (the sum of |du_x0|/delta)",
+                         label="W_diss"),
         Variable("cycle_energy", "energy dissipated in the hysteresis cycle that closes during the move into "
                  "this step, at its end or on the way (the area of its F_x-u_x0 loop; 0 where no cycle closes)",
                  units_physical="J",
@@ -80,10 +84,12 @@ def _history_variables() -> tuple[Variable, ...]:
                          "point of the history (the latest such, with other states in between); cycle_energy "
                          "is the energy dissipated between the two, for the outermost cycle closing during the "
                          "move (cycles closing within one move are nested). For a cycle closing at the end of "
-                         "step j on the state of step i it is dissipated_energy[j] - dissipated_energy[i]"),
+                         "step j on the state of step i it is dissipated_energy[j] - dissipated_energy[i]",
+                         label="W_cycle"),
         # a coordinate, in every file: the loops are read and plotted against it
         Variable("ux0", "tangential rigid-body displacement u_x0 at this step divided by the indentation depth "
-                 "delta (amplitude times ux0_history)", dims=("amplitude", "step"), always=True, coordinate=True),
+                 "delta (amplitude times ux0_history)", dims=("amplitude", "step"), always=True, coordinate=True,
+                 label="u_x0 / delta"),
     )
 
 

@@ -47,24 +47,26 @@ _AMPLITUDES = ("amplitudes Delta_i of the harmonics, gap g = sum Delta_i (1 - co
                "is the base wave, Delta_1 > 0")
 PARAMETERS = (
     Parameter("domain", "periodic wavy surface (period lambda_1) or a single non-periodic wavy indenter",
-              kind=STR, default="periodic", choices=DOMAINS),
+              kind=STR, default="periodic", choices=DOMAINS, label="domain"),
     Parameter("amplitudes", f"{_AMPLITUDES} (normalised mode: any length unit, only Delta_i/Delta_1 matters)",
               meaning_physical=_AMPLITUDES, units="1", units_physical="m", kind=ARRAY, required=True,
-              sweepable=False),
+              sweepable=False, label="amplitudes Delta_i"),
     Parameter("wavenumbers", "integer wavenumbers n_i >= 1 of the harmonics (wavelength lambda_1/n_i), "
-              "paired with amplitudes; the first is 1", kind=ARRAY, required=True, sweepable=False),
+              "paired with amplitudes; the first is 1", kind=ARRAY, required=True, sweepable=False,
+              label="wavenumbers n_i"),
     Parameter("n_harmonics", "number of harmonics used: the first N rows of the table (default: all)",
-              kind=INT, low=1),
+              kind=INT, low=1, label="number of harmonics"),
     Parameter("E", "Young's modulus of the half-plane (giving it switches to physical units)", units="Pa",
-              low=0.0, low_open=True, high=1e15, sweepable=False, mode="physical"),
-    Parameter("nu", "Poisson's ratio of the half-plane", low=0.0, high=0.5, sweepable=False, mode="physical"),
+              low=0.0, low_open=True, high=1e15, sweepable=False, mode="physical", label="Young's modulus E"),
+    Parameter("nu", "Poisson's ratio of the half-plane", low=0.0, high=0.5, sweepable=False, mode="physical",
+              label="Poisson's ratio nu"),
     Parameter("lambda_1", "wavelength lambda_1 of the base wave", units="m", low=0.0, low_open=True,
-              high=1e6, sweepable=False, mode="physical"),
+              high=1e6, sweepable=False, mode="physical", label="base wavelength lambda_1"),
     Parameter("a", "contact width 2a divided by the base wavelength lambda_1", required=True,
-              low=0.0, high=1.0, low_open=True, high_open=True),
+              low=0.0, high=1.0, low_open=True, high_open=True, label="width 2a / lambda_1"),
     Parameter("x", "surface coordinate x divided by the contact half-width a",
               meaning_physical="surface coordinate x from the contact centre", units="1", units_physical="m",
-              default=0.0, low=-1e6, high=1e6),
+              default=0.0, low=-1e6, high=1e6, label="x / a", label_physical="x", axis="X"),
 )
 
 _SERIES = ("the closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or the truncated Bessel "
@@ -74,34 +76,37 @@ VARIABLES = (
              units_physical="Pa", scale=PSTAR,
              comment="Exact series, length chosen from method.rtol (see n_terms, error_estimate). With "
                      "method approximate_eq18/eq20 it is instead the paper's approximate formula, which is "
-                     "NOT accurate (validity = 2); all other variables stay exact."),
+                     "NOT accurate (validity = 2); all other variables stay exact.", label="contact pressure p(x)"),
     Variable("uz", "surface displacement u_z(x), positive into the body", units_physical="m",
              scale=DELTA_1,
              comment="Datum (C = 0 in eq. 5): periodic domain, kernel ln|2 sin(pi (x - xi)/lambda_1)|, so u_z "
                      "has zero mean over one period; non-periodic domain, kernel ln|2 pi (x - xi)/lambda_1| "
-                     "(lengths in units of lambda_1/(2 pi)). Inside the contact u_z(x) = u_z(0) - g(x)."),
+                     "(lengths in units of lambda_1/(2 pi)). Inside the contact u_z(x) = u_z(0) - g(x).",
+                     label="displacement u_z"),
     Variable("mean_pressure", "mean (nominal) pressure p_inf = (1/lambda_1) * integral of p over the contact "
              "(non-periodic: load per unit length / lambda_1)", units_physical="Pa", scale=PSTAR, dims=CASE,
              comment="Closed forms: eq. (16) (non-periodic), docs/theory/wavy.md (W12); Legendre form (periodic), "
-                     "docs/theory/wavy.md (W11)."),
+                     "docs/theory/wavy.md (W11).", label="mean pressure p_inf"),
     Variable("peak_pressure", "pressure p(0) at the contact centre (the paper's p_max)", units_physical="Pa",
-             scale=PSTAR, dims=CASE),
+             scale=PSTAR, dims=CASE, label="centre pressure p(0)"),
     Variable("max_pressure", "global maximum of the contact pressure over the contact", units_physical="Pa",
-             scale=PSTAR, dims=CASE),
+             scale=PSTAR, dims=CASE, label="maximum pressure"),
     Variable("max_pressure_x", "position x >= 0 of the global pressure maximum (p is even)", units_physical="m",
-             scale=HALF_WIDTH, dims=CASE),
+             scale=HALF_WIDTH, dims=CASE, label="x of max. pressure"),
     Variable("continuous_contact", "exact test of the continuous-contact assumption", dtype="int8", dims=CASE,
              flag_values=(0, 1, 2), flag_meanings=("fails", "holds", "undetermined_series_not_converged"),
              comment="1 where p/sqrt(1-(x/a)^2) >= 0 over the contact and the gap outside it is >= 0 "
                      "(docs/theory/wavy.md (W20)). 0: the continuous-contact solution has tensile pressure or "
                      "the profile penetrates the surface outside the contact; the real contact is then discrete "
                      "and the values here are those of the model only. 2: the series of p/sqrt(1-(x/a)^2) did "
-                     "not meet method.rtol, so the test is not decided (docs/theory/wavy.md (W25))."),
+                     "not meet method.rtol, so the test is not decided (docs/theory/wavy.md (W25)).",
+                     label="continuous-contact test"),
     Variable("johnson_parameter", "Johnson parameter chi = max over ripples i >= 2 of pi E* Delta_i/(lambda_i "
              "p_h), p_h = 2 p_inf lambda_1/(pi a) (as corrected in docs/theory/wavy.md (W21); 0 for one harmonic)",
              dims=CASE, comment="The paper's criterion chi < 1 is a heuristic, neither necessary nor sufficient: "
-                                "see continuous_contact."),
-    Variable("n_terms", f"number of sine terms summed in {_SERIES}", dtype="int32", dims=CASE),
+                                "see continuous_contact.", label="Johnson parameter chi"),
+    Variable("n_terms", f"number of sine terms summed in {_SERIES}", dtype="int32", dims=CASE,
+             label="number of series terms"),
     Variable("periodic_correction", "bound on max |p_periodic - p_nonperiodic| over the contact: how far the "
              "periodic surface's pressure is from a single indenter's of the same contact width",
              units_physical="Pa", scale=PSTAR, dims=CASE,
@@ -109,7 +114,8 @@ VARIABLES = (
                      "eqs. (1) and (2) differ by a smooth term), docs/theory/wavy.md (W26); +inf where that "
                      "interpolant is not resolved. "
                      "Method auto uses the non-periodic series for a periodic pressure where this plus the "
-                     "non-periodic series error is below the tolerance (validity = 3)."),
+                     "non-periodic series error is below the tolerance (validity = 3).",
+                     label="periodic correction"),
     Variable("error_estimate", "upper bound of the error of pressure, peak_pressure and max_pressure (only; "
              "not of uz): periodic, rounding of the closed form; non-periodic, truncated tail + rounding",
              units_physical="Pa", scale=PSTAR, dims=CASE,
@@ -118,19 +124,20 @@ VARIABLES = (
                      "about error_estimate/p* * (|x| - a) * 2 pi/lambda_1 * Delta_1 plus the gap quadrature "
                      "(below 1e-13 Delta_1 in the tests). Where validity = 3 the pressure is instead within "
                      "periodic_correction plus the non-periodic series error of the periodic one, together "
-                     "below method.rtol."),
+                     "below method.rtol.", label="error bound"),
     Variable("converged", f"whether the pressure of {_SERIES} met method.rtol (error_estimate <= "
              "method.rtol * p*)", dtype="int8", dims=CASE, flag_values=(0, 1),
              flag_meanings=("not_converged", "converged"), always=True,
              comment="0: rtol was not reached (below rounding, or the length cap as 2a/lambda_1 -> 1); the "
-                     "values are the best available, good to error_estimate."),
+                     "values are the best available, good to error_estimate.", label="series converged"),
     Variable("validity", "validity of pressure and uz at the point", dtype="int8", flag_values=(0, 1, 2, 3),
              flag_meanings=("series_converged", "series_not_converged", "approximate_formula",
                             "nonperiodic_series_within_rtol"), always=True,
              comment="1: the series did not meet method.rtol (see converged, error_estimate); 2: method "
                      "approximate_eq18/eq20, pressure is the paper's inaccurate approximation; 3: method auto, "
                      "periodic domain: pressure is the non-periodic series, within method.rtol of the "
-                     "periodic one (see periodic_correction); uz and the per-case values stay periodic."),
+                     "periodic one (see periodic_correction); uz and the per-case values stay periodic.",
+                     label="validity of pressure and uz"),
 )
 #: variable -> the scale its normalised value is multiplied by in physical mode (its declaration's)
 _SCALE = {v.name: v.scale for v in VARIABLES if v.scale}
