@@ -39,8 +39,8 @@ def reference(kind, geometry, load, control, E, nu):
     else:
         n, B = {"cone": lambda: (mp.mpf(1), mp.pi / 2 * mp.tan(mp.mpf(geometry.get("theta", 0.0)))),
                 "paraboloid": lambda: (mp.mpf(2), 2 / mp.mpf(geometry.get("R", 1.0))),
-                "power_law": lambda: (mp.mpf(geometry["n"]),
-                                      _kappa(mp.mpf(geometry["n"])) * mp.mpf(geometry["A"]) * mp.mpf(geometry["n"]))}[kind]()
+                "power_law": lambda: (mp.mpf(geometry["n"]), _kappa(mp.mpf(geometry["n"])) * mp.mpf(geometry["A"])
+                                      * mp.mpf(geometry["n"]))}[kind]()
         if control == "normal_force":
             a = ((n + 1) * mp.mpf(load) / (2 * B * e_star)) ** (1 / (n + 1))
         else:

@@ -259,15 +259,18 @@ def contact(names, p: Mapping[str, Any], profile: Profile, physical: bool) -> tu
 def tangential_load(names, p: Mapping[str, Any], profile: Profile, physical: bool, a) -> tuple:
     """ux0 = u_x0/delta for the kernels, from ux0, fx or tangential_force (Cattaneo–Mindlin in the MDR,
     docs/theory/axisymmetric.md (A32)-(A34), (A37)), and the requested ones of ux0, fx, tangential_force."""
-    from ..physics.axisymmetric.profiles import displacement_ratio, force_ratio, slip_of_displacement, slip_ratio
+    from ..physics.axisymmetric.profiles import (displacement_ratio, force_ratio, slip_of_displacement, slip_ratio,
+                                                 stick_radius_of_force)
 
     nu, mu = _f(p, "nu"), _f(p, "mu")
     if "ux0" in p:
         ux0 = _f(p, "ux0")
-        fx = None
+        fx = c = None
     else:
-        fx = _f(p, "fx") if "fx" in p else _ratio_of_force(p, profile, a)
-        ux0 = displacement_ratio(slip_ratio(profile, a, fx), nu, mu)
+        fx, keep = _ratio_of_force(p, profile, a) if "tangential_force" in p else (_f(p, "fx"), 1.0 - _f(p, "fx"))
+        ux0 = displacement_ratio(slip_ratio(profile, a, fx, keep), nu, mu)
+        # the stick radius from the force itself (not through ux0): F_N(c) = (1 - fx) F_N(a), (A107)
+        c = stick_radius_of_force(profile, a, keep)
     out: dict[str, np.ndarray] = {}
     if "ux0" in names:
         out["ux0"] = ux0
@@ -277,7 +280,7 @@ def tangential_load(names, p: Mapping[str, Any], profile: Profile, physical: boo
         out["fx"] = fx
     if "tangential_force" in names:
         out["tangential_force"] = fx * mu * _normal_force(p, profile, a)
-    return ux0, out
+    return ux0, c, out
 
 
 def _normal_force(p, profile, a) -> np.ndarray:
@@ -286,13 +289,18 @@ def _normal_force(p, profile, a) -> np.ndarray:
     return _f(p, "normal_force") if "normal_force" in p else profile.normal_force(a) * effective_modulus(p)
 
 
-def _ratio_of_force(p, profile, a) -> np.ndarray:
-    """fx = F_x/(mu F_N) of tangential_force; 0 without force (also at mu = 0, which the check allows only
-    then); at most 1 (the check refuses more than mu F_N: the ratio exceeds 1 only by rounding)."""
-    force = _f(p, "tangential_force")
-    limit = _f(p, "mu") * _normal_force(p, profile, a)
+def _ratio_of_force(p, profile, a) -> tuple[np.ndarray, np.ndarray]:
+    """fx = F_x/(mu F_N) of tangential_force and 1 - fx formed without cancellation
+    (``profiles.remaining_force``); fx 0 without force (also at mu = 0, which the check allows only
+    then); at most 1 (the check refuses more than mu F_N: the ratio exceeds 1 only by rounding), and 1
+    where 1 - fx is 0."""
+    from ..physics.axisymmetric.profiles import remaining_force
+
+    force, mu, normal = _f(p, "tangential_force"), _f(p, "mu"), _normal_force(p, profile, a)
+    keep = remaining_force(force, mu, normal)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(force == 0.0, 0.0, np.minimum(force / limit, 1.0))
+        fx = np.where(force == 0.0, 0.0, np.where(keep <= 0.0, 1.0, np.minimum(force / (mu * normal), 1.0)))
+    return fx, keep
 
 
 def surface_point(p: Mapping[str, Any], physical: bool, a, keys: tuple[str, ...] = ("x", "y")) -> tuple:
@@ -312,7 +320,7 @@ def _evaluate(kind: str | None):
         a, out = contact(names, p, profile, physical)
         if set(names) <= set(CONTACT):      # their group's block carries no tangential parameter
             return out
-        ux0, loads = tangential_load(names, p, profile, physical, a)
+        ux0, stick, loads = tangential_load(names, p, profile, physical, a)
         out.update(loads)
         p = {**p, "ux0": ux0}
         local = [n for n in names if n in ax.FIELDS]
@@ -324,8 +332,8 @@ def _evaluate(kind: str | None):
         if not local:
             return out
         values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=_f(p, "nu"),
-                              mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"], rtol=options["rtol"],
-                              scale=scale, dpdz_scale=dpdz_scale)
+                              mu=_f(p, "mu"), ux0=_f(p, "ux0"), stick=stick, method=options["method"],
+                              rtol=options["rtol"], scale=scale, dpdz_scale=dpdz_scale)
         if "stick_radius" in values and not physical:
             values["stick_radius"] = values["stick_radius"] / a
         out.update(values)

@@ -309,7 +309,14 @@ def displacements(names, profile: Profile, x, y, z, *, a, nu, mu, ux0, c, mu_ker
     shape, (x, y, z, a, nu, c, muk) = flat_arguments("displacement", method, x, y, z, a, nu, c, mu_kernel)
     _validate(z, a, c, nu, muk, profile, rtol)
     normal = _normal(x, y, z, a, nu, profile, method, rtol)
-    tangential = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol)
+    slip = None
+    if profile.closed is not None and profile.closed[0] == "paraboloid":
+        ux, mu_ = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() for v in (ux0, mu))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slip = np.where(mu_ > 0.0, 2.0 * (1.0 - nu) / (2.0 - nu) * ux / mu_, 1.0)   # (A32): 1 - (c/a)^2
+            # only where u_x0 is the one of this c (the traction is fixed by c and mu_kernel)
+            slip = np.where((slip > 0.0) & (np.abs(1.0 - slip - (c / a) ** 2) <= 1e-13), slip, np.nan)
+    tangential = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol, slip)
     return {n: (normal[n[-1]] + tangential[n[-1]]).reshape(shape) for n in names}
 
 
@@ -360,9 +367,23 @@ def _normal(x, y, z, a, nu, profile, method, rtol):
     return {k: v / delta for k, v in total.items()}
 
 
-def _hertz_mindlin(x, y, z, a, c, nu, mu):
+#: Gauss–Legendre nodes of the thin-annulus difference of ``_hertz_mindlin``: at a distance of at least
+#: 4 widths from the annulus the integrand's nearest singularity lies beyond the Bernstein ellipse
+#: of parameter 16, so 16 nodes leave 16^-32 (1e-38) of the integral
+_ANNULUS_NODES, _ANNULUS_REACH = 16, 4.0
+
+
+def _hertz_mindlin(x, y, z, a, c, nu, mu, slip=None):
     """(I41) for partial slip: the traction mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)] per
-    E*, p0 = 2a/(pi R), delta = a^2/R: u/delta = mu (2/pi) [V(x/a) - (c/a)^2 V(x/c)]."""
+    E*, p0 = 2a/(pi R), delta = a^2/R: u/delta = mu (2/pi) [V(x/a) - (c/a)^2 V(x/c)].
+
+    As fx -> 0 the two terms cancel (c -> a): the difference lost 1e-16/fx of its value (8e-8 at
+    fx = 1e-9).  Where ``slip`` = 1 - (c/a)^2 is given (exactly, from u_x0, (A32)) the difference
+    is instead, at points at least 4 annulus widths w = a - c from the slip annulus, the
+    superposition of sliding punches over [c, a] (docs/theory/interior.md (I43), (I45)):
+    t^2 V(p/t) has the derivative pi t U(p/t), U the unit sliding punch (I39), so
+    u/delta = (2 mu / a^2) int_c^a t U(p/t) dt, by Gauss–Legendre in t = a - w (1 - s)/2 with
+    w = a slip / (1 + sqrt(1 - slip)) free of the rounding of c."""
     out = {k: v * (2.0 / math.pi) * mu for k, v in hertz_sliding_displacement_unit(x / a, y / a, z / a, nu).items()}
     part = np.flatnonzero(c > 0.0)
     if part.size:
@@ -370,20 +391,35 @@ def _hertz_mindlin(x, y, z, a, c, nu, mu):
         stick = hertz_sliding_displacement_unit(x[part] / cp, y[part] / cp, z[part] / cp, nu[part])
         for k in _KEYS:
             out[k][part] -= (2.0 / math.pi) * mu[part] * (cp / ap) ** 2 * stick[k]
+    if slip is None:
+        return out
+    w = a * slip / (1.0 + np.sqrt(np.clip(1.0 - slip, 0.0, 1.0)))
+    r = np.hypot(x, y)
+    gap = np.hypot(np.where(r < c, c - r, np.where(r > a, r - a, 0.0)), z)
+    thin = np.flatnonzero((c > 0.0) & (slip < 0.5) & (gap >= _ANNULUS_REACH * w))
+    if thin.size:
+        s, ws = gauss_legendre(_ANNULUS_NODES)                # on [0, 1]
+        A, W = a[thin, None], w[thin, None]
+        t = A - W * (1.0 - s[None, :])                        # nodes in (c, a)
+        unit = sliding_punch_displacement_unit(x[thin, None] / t, y[thin, None] / t, z[thin, None] / t,
+                                               nu[thin, None])
+        for k in _KEYS:
+            out[k][thin] = 2.0 * mu[thin] / a[thin] ** 2 * np.sum(W * ws[None, :] * t * unit[k], axis=1)
     return out
 
 
-def _tangential(x, y, z, a, c, nu, muk, profile, method, rtol):
+def _tangential(x, y, z, a, c, nu, muk, profile, method, rtol, slip=None):
     out = {k: np.zeros(x.size) for k in _KEYS}
     act = np.flatnonzero((muk > 0.0) & (c < a))
     if not act.size:
         return out
     X, Y, Z, A, C, NU, MU = (v[act] for v in (x, y, z, a, c, nu, muk))
+    slip = None if slip is None else slip[act]
     family = _family(profile, method)
     if family == "flat_punch":
         part = {k: MU * v for k, v in sliding_punch_displacement_unit(X / A, Y / A, Z / A, NU).items()}
     elif family == "paraboloid":
-        part = _hertz_mindlin(X, Y, Z, A, C, NU, MU)
+        part = _hertz_mindlin(X, Y, Z, A, C, NU, MU, slip)
     else:
         part = _sum(X, Y, Z, A, NU, profile, rtol, sliding_punch_displacement_unit, _SLIDING_KERNEL)
         stick = np.flatnonzero(C > 0.0)

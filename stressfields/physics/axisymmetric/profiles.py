@@ -763,7 +763,43 @@ def radius_at_force(profile: Profile, force) -> np.ndarray:
                   np.full(force.shape, profile.max_radius), 80)
 
 
-def slip_ratio(profile: Profile, a, fx) -> np.ndarray:
+def remaining_force(force, limit_factor, limit_load) -> np.ndarray:
+    """1 - F_x / (mu F_N) = F_N(c) / F_N(a) of a tangential force F_x = ``force`` and mu F_N =
+    ``limit_factor`` * ``limit_load``, in [0, 1], without cancellation as F_x -> mu F_N: mu F_N is
+    formed exactly as a sum p + e of two doubles (Dekker's product), p - F_x is exact there (Sterbenz),
+    so the result keeps the relative accuracy of its inputs instead of 1e-16 / (1 - fx)."""
+    x, y, q = (_arr(v) for v in (limit_factor, limit_load, force))
+    p = x * y
+    split = 134217729.0                                     # 2^27 + 1: halves of 26 bits
+    with np.errstate(over="ignore", invalid="ignore"):
+        xh = x * split - (x * split - x)
+        yh = y * split - (y * split - y)
+        xl, yl = x - xh, y - yh
+        e = ((xh * yh - p) + xh * yl + xl * yh) + xl * yl   # x * y - p, exactly
+        e = np.where(np.isfinite(e), e, 0.0)                # beyond 1e300 the split overflows: plain p
+        keep = ((p - q) + e) / p
+    # F_x = mu F_N as the product rounds is gross slip (fx = 1), as the recipe check counts it
+    return np.where(q == 0.0, 1.0, np.where(q >= p, 0.0, np.clip(keep, 0.0, 1.0)))
+
+
+def stick_radius_of_force(profile: Profile, a, keep) -> np.ndarray:
+    """Stick radius c of the tangential force with F_N(c) = ``keep`` F_N(a), ``keep`` = 1 - fx
+    (Cattaneo–Mindlin in the MDR, docs/theory/axisymmetric.md (A107)), computed from the force
+    directly (not through u_x0, whose round trip lost up to 7.5e-8 of c as fx -> 1 and made it depend
+    on nu and mu): power laws c = a keep^(1/(n+1)); flat punch: a (stick) below gross slip, 0 at it;
+    tabulated: ``radius_at_force``.  keep = 0 (fx = 1, gross slip) gives 0, keep = 1 gives a."""
+    a, keep = np.broadcast_arrays(_arr(a), _arr(keep))
+    n = _load_exponent(profile)
+    if n is not None:
+        c = a * (np.sqrt(keep) if n == 1.0 else np.cbrt(keep) if n == 2.0 else keep ** (1.0 / (n + 1.0)))
+    elif profile.kind == "flat_punch":
+        c = np.where(keep > 0.0, a, 0.0)
+    else:
+        c = radius_at_force(profile, keep * profile.normal_force(a))
+    return np.where(keep >= 1.0, a, np.where(keep <= 0.0, 0.0, np.minimum(c, a)))
+
+
+def slip_ratio(profile: Profile, a, fx, keep=None) -> np.ndarray:
     """rho = G* u_x0 / (mu E* delta) = [g(a) - g(c)] / g(a) (docs/theory/axisymmetric.md (A32)) of the
     tangential force F_x = fx mu F_N, 0 <= fx <= 1.
 
@@ -771,16 +807,19 @@ def slip_ratio(profile: Profile, a, fx) -> np.ndarray:
     F_N(c) = (1 - fx) F_N(a).  Power laws: (c/a)^(n+1) = 1 - fx and rho = 1 - (1 - fx)^(n/(n+1)),
     evaluated as -expm1 of a log1p (no cancellation as fx -> 0); tabulated: c by ``radius_at_force``;
     flat punch: it sticks whole up to gross slip with F_x = 2 a G* u_x0 (A37), so rho = fx.
-    fx = 1 gives rho = 1, the onset of gross slip (A33)."""
+    fx = 1 gives rho = 1, the onset of gross slip (A33).  ``keep``: 1 - fx where it is known more
+    accurately than fx itself (``remaining_force``), used for fx >= 1/2."""
     fx = _arr(fx)
+    keep = 1.0 - fx if keep is None else _arr(keep)
     n = _load_exponent(profile)
     if n is not None:
         with np.errstate(divide="ignore"):
-            return np.where(fx >= 1.0, 1.0, -np.expm1(n / (n + 1.0) * np.log1p(-np.minimum(fx, 1.0))))
+            log_keep = np.where(fx < 0.5, np.log1p(-np.minimum(fx, 0.5)), np.log(np.maximum(keep, 0.0)))
+            return np.where((fx >= 1.0) | (keep <= 0.0), 1.0, -np.expm1(n / (n + 1.0) * log_keep))
     if profile.kind == "flat_punch":
         return np.minimum(fx, 1.0)
     a = _arr(a)
-    c = radius_at_force(profile, (1.0 - fx) * profile.normal_force(a))
+    c = radius_at_force(profile, keep * profile.normal_force(a))
     ga = profile.g(a)
     return np.where(fx >= 1.0, 1.0, (ga - profile.g(c)) / ga)
 
