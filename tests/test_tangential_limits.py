@@ -3,6 +3,8 @@ stick radius against 50-digit closed forms (c/a = (1 - fx)^(1/(n+1)) for the pow
 F_N(c) = (1 - fx) F_N(a), docs/theory/axisymmetric.md (A107); a paraboloid table, whose spline is the
 quadratic itself, obeys the same law), independent of nu and mu as the exact c is, and through
 tangential_force with 1 - F_x/(mu F_N) formed in 50 digits from the very doubles of the recipe."""
+import math
+
 import mpmath as mp
 import numpy as np
 import pytest
@@ -85,17 +87,36 @@ def test_hertz_mindlin_displacement_keeps_its_digits_as_fx_goes_to_0():
 def test_hertz_mindlin_displacement_below_the_centre_as_fx_goes_to_0():
     """On the axis the normal load has no horizontal displacement, so u_x/u_x0 there is the tangential
     field per unit load, which tends to its fx -> 0 limit by O(fx): from fx = 1e-12 to 1e-9 it moves by
-    about 1e-9 (it moved by 1.6e-7 at z = 1e-9 a, and 1e-4 at fx = 1e-12, with the cancellation); and at
-    fx = 0.3, where the two terms do not cancel, it is the plain difference of (I41) to 1e-13."""
+    about 1e-9 (it moved by 1.6e-7 at z = 1e-9 a, and 1e-4 at fx = 1e-12, with the cancellation)."""
     z = [1e-9, 0.1, 1.0, 3.0]
     base = {"nu": 0.2, "mu": 0.3, "x": 0.0, "y": 0.0, "z": z}
     ds = sf.generate({"scenario": "parabolic", "parameters": {**base, "fx": [1e-12, 1e-9]},
                       "output": {"variables": ["u_x", "ux0"]}}).compute()
     ratio = (ds.u_x / ds.ux0).transpose("fx", "z").values
     assert np.all(np.abs(ratio[1] - ratio[0]) <= 5e-9 * np.abs(ratio[0]))
-    from stressfields.physics.axisymmetric.displacement import _hertz_mindlin
-    a, c = np.ones(4), np.full(4, 0.7 ** (1 / 3))
-    args = (np.zeros(4), np.zeros(4), np.asarray(z), a, c, np.full(4, 0.2), np.full(4, 0.3))
-    plain, thin = _hertz_mindlin(*args), _hertz_mindlin(*args, slip=1.0 - c ** 2)
+
+
+@pytest.mark.parametrize("fx", [1e-6, 1e-5])
+def test_hertz_mindlin_tangential_field_across_the_thin_slip_annulus(fx):
+    """The tangential part of (I41), mu (2/pi) [V(p/a) - (c/a)^2 V(p/c)], against the same difference in
+    80-bit extended precision (c from (1 - fx)^(1/3) there too), whose cancellation costs it
+    1e-19/rho, 1.5e-13 at fx = 1e-6: at points inside, across and outside the slip annulus and close
+    above it, where the plain double difference missed by 3e-10 to 7e-10."""
+    from stressfields.physics.axisymmetric.displacement import _hertz_mindlin, hertz_sliding_displacement_unit
+
+    ld = np.longdouble
+    nu, mu = 0.3, 0.3
+    s = np.cbrt(ld(1) - ld(fx))
+    r = np.array([0.0, 0.5, 1 - 1e-5, 1 - 5e-7, 1 - 1e-7, 1.0, 1 + 1e-7, 1 + 1e-5, 1.5])
+    R, Z = (v.ravel() for v in np.meshgrid(r, [0.0, 1e-12, 1e-8, 1e-6, 1e-4, 0.1]))
+    x, y = 0.8 * R, 0.6 * R
+    n = x.size
+    got = _hertz_mindlin(x, y, Z, np.ones(n), np.full(n, float(s)), np.full(n, nu), np.full(n, mu),
+                         np.full(n, float(1 - s * s)))
+    xl, yl, zl = (v.astype(ld) for v in (x, y, Z))
+    outer = hertz_sliding_displacement_unit(xl, yl, zl, ld(nu))
+    inner = hertz_sliding_displacement_unit(xl / s, yl / s, zl / s, ld(nu))
+    scale = mu * float(1 - s * s)                  # the tangential displacement's size, ~ u_x0/delta
     for k in "xyz":
-        assert np.allclose(thin[k], plain[k], rtol=1e-13, atol=1e-13 * np.max(np.abs(plain["x"])))
+        want = (ld(2) / ld(math.pi) * ld(mu) * (outer[k] - s * s * inner[k])).astype(float)
+        assert np.all(np.abs(got[k] - want) <= 1e-12 * np.maximum(np.abs(want), scale)), k
