@@ -17,6 +17,8 @@ import stressfields as sf
 from stressfields import cli
 
 mp.mp.dps = 50
+TABLE = [4e-3 * i / 40 for i in range(41)]
+TABULATED = {"profile": "tabulated", "profile_r": TABLE, "profile_f": [r * r / (2 * 0.01) for r in TABLE]}
 #: every quantity of an accepted contact within this range must be accepted (the refusal's bound,
 #: 1e-300 .. 1e300, with room for the profiles' constants)
 SAFE = (mp.mpf("1e-280"), mp.mpf("1e280"))
@@ -59,11 +61,15 @@ GEOMETRY = {
                                             st.floats(0.3, 50.0))),
     "flat_punch": ("flat_punch", st.builds(lambda e: {"profile": "flat_punch", "radius": 10.0 ** e},
                                            st.floats(-320, 8))),
+    # a paraboloid (R = 10 mm) tabulated to 4 mm: the spline of a quadratic is the quadratic, so the
+    # contact obeys Hertz, which the tabulated inversion (a bisection on log a) does not use
+    "tabulated": ("paraboloid", st.just(TABULATED)),
 }
+TABLE_END = 4e-3
 
 
 def _recipe(scenario, geometry, control, load, E, nu):
-    name = "axisymmetric" if scenario == "flat_punch" else scenario
+    name = "axisymmetric" if scenario in ("flat_punch", "tabulated") else scenario
     return {"scenario": name, "parameters": {**geometry, "E": E, "nu": nu, control: load, "x": 0.0},
             "output": {"variables": ["mean_pressure"] + (["contact_radius", "delta"] if control == "normal_force"
                                                          else [])}}
@@ -90,9 +96,11 @@ def test_loads_across_600_decades_are_right_or_refused(scenario, control):
         recipe = _recipe(scenario, geometry, control, load, E, nu)
         if not (load > 0.0 and E > 0.0):  # 10^-330 is 0 in float64: the declared range refuses it
             return
-        a, delta, pm, quantities = reference(kind, geometry, load, control, E, nu)
+        a, delta, pm, quantities = reference(kind, {"R": 0.01} if scenario == "tabulated" else geometry, load,
+                                             control, E, nu)
         safe = (_inside_declared(recipe["parameters"], control)
-                and all(SAFE[0] <= q <= SAFE[1] for q in quantities))
+                and all(SAFE[0] <= q <= SAFE[1] for q in quantities)
+                and (scenario != "tabulated" or a < TABLE_END * (1 - 1e-9)))
         try:
             ds = sf.generate(recipe).compute()
         except sf.RecipeError as exc:
@@ -146,3 +154,17 @@ def test_the_stated_range_is_accepted_and_right_at_both_ends():
         assert float(ds.mean_pressure) == pytest.approx(float(pm), rel=1e-12)
     assert math.isclose(high, 1e15)      # the declared maximum binds first for a steel ball
     assert np.isfinite(low) and low < 1e-250
+
+
+@pytest.mark.parametrize("control, load", [("normal_force", 1e-60), ("normal_force", 1e-200), ("delta", 1e-100)])
+def test_a_tabulated_contact_far_below_the_table_spacing_is_right(control, load):
+    """The tabulated inversion bisected [0, r_max] arithmetically to 2^-80 r_max: 1e-60 N on this 4 mm
+    table came out 0.5 % off and 1e-100 N 1e11 times too large, flagged valid."""
+    geometry = TABULATED
+    E, nu = 2e11, 0.3
+    ds = sf.generate(_recipe("tabulated", geometry, control, load, E, nu)).compute()
+    a, delta, pm, _ = reference("paraboloid", {"R": 0.01}, load, control, E, nu)
+    assert float(ds.mean_pressure) == pytest.approx(float(pm), rel=1e-12)
+    if control == "normal_force":
+        assert float(ds.contact_radius) == pytest.approx(float(a), rel=1e-12)
+        assert float(ds.delta) == pytest.approx(float(delta), rel=1e-12)

@@ -391,6 +391,9 @@ def check_profile(values, physical, method):
         if not physical and r[-1] < 1.0:
             problems.append(f"profile_r must cover the contact, r/a in [0, 1]; it ends at {r[-1]!r}")
         radii = [1.0] if not physical and r[-1] >= 1.0 else []
+        floor = _tabulated_floor(profile, values) if physical and "E" in values else None
+        if floor:
+            return problems + [floor]
         if physical and "delta" in values:
             deltas = np.atleast_1d(values["delta"])
             reach = float(profile.depth(r[-1]))
@@ -463,6 +466,48 @@ def _radii_of_force(values, profile, end: float) -> tuple[list[float], str | Non
                     f"contact reaches the end of the table, r = {end!r} m (with E* = {float(e_star.min())!r} Pa); "
                     "extend profile_r")
     return [float(v) for v in radius_at_force(profile, forces)], None
+
+
+def _tabulated_floor(profile, values) -> str | None:
+    """Why the smallest load of a tabulated profile is too small, or None: every quantity of its
+    contact (a, a^2, delta, F_N/E*, p_m/E* and F_N, p_m at every E* of the sweep) must stay at or above
+    ``LOAD_RANGE[0]``; they all grow with a, so the smallest admissible radius is a bisection away and
+    the load's floor is the load at that radius (the ceiling is the end of the table, checked after)."""
+    from ..physics.axisymmetric.profiles import SMALLEST_RADIUS
+    from ..physics.roots import bisect
+
+    control = "normal_force" if "normal_force" in values else "delta"
+    if control not in values:
+        return None
+    nu = np.atleast_1d(values.get("nu", NU.default))
+    e_low = float(np.min(values["E"])) / (1.0 - float(np.min(nu)) ** 2)
+    e_high = float(np.max(values["E"])) / (1.0 - float(np.max(nu)) ** 2)
+    tiny, top = LOAD_RANGE[0], float(profile.max_radius)
+
+    def below(a):
+        force = np.asarray(profile.normal_force(a), dtype=float)
+        with np.errstate(under="ignore"):
+            pm = force / (math.pi * a * a)
+            least = np.minimum.reduce([a, a * a, np.asarray(profile.depth(a), dtype=float), force, pm,
+                                       force * e_low, pm * e_low])
+        return least < tiny
+
+    if top <= SMALLEST_RADIUS or below(np.array(top)):
+        return None                         # a table too small to hold any contact: said elsewhere
+    a_min = float(bisect(below, np.array(SMALLEST_RADIUS), np.array(top), 66, geometric=True)) * (1.0 + 1e-12)
+    if control == "normal_force":
+        floor = float(profile.normal_force(a_min)) * e_high
+        unit = "N"
+    else:
+        floor = float(profile.depth(a_min))
+        unit = "m"
+    least = float(np.min(values[control]))
+    if least >= floor:
+        return None
+    return (f"{control} = {least!r} {unit} is outside the range where the contact's quantities (a, delta, F_N, "
+            f"F_N/E*, p_m, p_m/E*) stay within [{LOAD_RANGE[0]:g}, {LOAD_RANGE[1]:g}] in SI units and are computed "
+            f"to full precision; with E = {float(np.min(values['E'])):.6g} Pa and this table, give {control} >= "
+            f"{floor:.3g} {unit} (and at most the load at the end of the table)")
 
 
 def check_load(kind: str | None, values, physical) -> list[str]:

@@ -689,15 +689,41 @@ class Tabulated(Profile):
         return self._sums(self._check_radius(a), 3)
 
     def contact_radius(self, delta):
-        """Inverse of ``depth`` (eq. 7, docs/theory/axisymmetric.md (A3)) by 80 bisection steps on
+        """Inverse of ``depth`` (eq. 7, docs/theory/axisymmetric.md (A3)) by ``_relative_root`` on
         [0, r_max] (g is increasing for a monotone profile)."""
         delta = _arr(delta)
         top = float(self.g(self.max_radius))
         if np.any(delta > top * (1.0 + 1e-12)) or np.any(delta < 0.0):
             raise ValueError(f"tabulated profile: depth must lie in [0, {top!r}] (the depth at the end "
                              f"of the table, r = {self.max_radius!r}); got {delta!r}")
-        return bisect(lambda r: self.g(r) < delta, np.zeros(delta.shape), np.full(delta.shape, self.max_radius),
-                      80)
+        return _relative_root(self.g, delta, self.max_radius)
+
+
+#: the smallest contact radius the tabulated inversions resolve (the recipe check refuses loads
+#: whose contact radius would be smaller, docs/theory/axisymmetric.md (A107) and after)
+SMALLEST_RADIUS = 1e-300
+
+
+def _relative_root(increasing, target, top: float) -> np.ndarray:
+    """r in [0, top] with increasing(r) = target, to relative accuracy: 14 halvings of log r on
+    [SMALLEST_RADIUS, top] bracket it within 4.3 % (the ratio e^(log(top/SMALLEST_RADIUS)/2^14),
+    padded), then 64 arithmetic halvings of that bracket leave 2^-64 of the root (an arithmetic
+    bisection of [0, top] alone left an absolute 2^-80 top, so a contact 1e-20 of the table wide
+    came out 1e-4 off, and 1e-100 N on a 4 mm table 1e11 times; the log route alone leaves the
+    rounding of exp, 1e-15 relative); 0 for a zero target."""
+    target = _arr(target)
+    if top <= SMALLEST_RADIUS:
+        return np.zeros(target.shape)
+    above = lambda x: increasing(x) < target
+    lo, hi = np.full(target.shape, SMALLEST_RADIUS), np.full(target.shape, top)
+    width = math.log(top / SMALLEST_RADIUS) / 2.0 ** _LOG_HALVINGS
+    mid = bisect(above, lo, hi, _LOG_HALVINGS, geometric=True)
+    lo, hi = np.maximum(mid * math.exp(-width), lo), np.minimum(mid * math.exp(width), hi)
+    r = bisect(above, lo, hi, 64)
+    return np.where(target > 0.0, r, 0.0)
+
+
+_LOG_HALVINGS = 14
 
 
 # -- constructors (the public API) -------------------------------------------------------------------
@@ -747,7 +773,7 @@ def radius_at_force(profile: Profile, force) -> np.ndarray:
 
     Power-law families: F_N / E* = 2 B a^(n+1) / (n+1) with B = kappa_n A n (A5)-(A7), inverted in
     closed form; flat punch: the punch radius whatever the force (A8, the force fixes the depth);
-    tabulated: the shared bisection (``roots.bisect``, 80 halvings of [0, r_max], as
+    tabulated: the shared bisection (``roots.bisect`` on log a, ``_relative_root``, as
     ``Tabulated.contact_radius``) on F_N, which increases with a for a non-decreasing profile."""
     force = _arr(force)
     n = _load_exponent(profile)
@@ -759,8 +785,7 @@ def radius_at_force(profile: Profile, force) -> np.ndarray:
     if np.any(force > top * (1.0 + 1e-12)) or np.any(force < 0.0):
         raise ValueError(f"tabulated profile: F_N / E* must lie in [0, {top!r}] (the force at the end of "
                          f"the table, r = {profile.max_radius!r}); got {force!r}")
-    return bisect(lambda r: profile.normal_force(r) < force, np.zeros(force.shape),
-                  np.full(force.shape, profile.max_radius), 80)
+    return _relative_root(profile.normal_force, force, float(profile.max_radius))
 
 
 def remaining_force(force, limit_factor, limit_load) -> np.ndarray:
