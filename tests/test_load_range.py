@@ -10,7 +10,7 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 import stressfields as sf
@@ -69,6 +69,9 @@ GEOMETRY = {
                                                           "ux0_history": [0.1]}, st.floats(1e-6, 1.5707))),
 }
 TABLE_END = 4e-3
+EXAMPLE = {"parabolic": {"R": 0.01}, "conical": {"theta": 0.2}, "axisymmetric": {"A": 2e3, "n": 3.0},
+           "flat_punch": {"profile": "flat_punch", "radius": 1e-3}, "tabulated": TABULATED,
+           "axisymmetric_history": {"profile": "cone", "theta": 0.2, "mu": 0.3, "ux0_history": [0.1]}}
 
 
 def _recipe(scenario, geometry, control, load, E, nu):
@@ -90,6 +93,9 @@ def test_loads_across_600_decades_are_right_or_refused(scenario, control):
 
     @settings(max_examples=15, deadline=None, derandomize=True,
               suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+    # besides the draws, one real contact and one 1e-320 load, so that both outcomes are always seen
+    @example(geometry=EXAMPLE[scenario], load_exp=0.0 if control == "normal_force" else -6.0, e_exp=11.0, nu=0.3)
+    @example(geometry=EXAMPLE[scenario], load_exp=-320.0, e_exp=11.0, nu=0.3)
     @given(geometry=geometries, load_exp=st.floats(-330.0, 20.0), e_exp=st.floats(-330.0, 16.0),
            nu=st.floats(0.0, 0.5))
     def check(geometry, load_exp, e_exp, nu):

@@ -458,7 +458,8 @@ def _radii_of_force(values, profile, end: float) -> tuple[list[float], str | Non
     from ..physics.axisymmetric.profiles import radius_at_force
 
     e_star = np.atleast_1d(values["E"])[:, None] / (1.0 - np.atleast_1d(values["nu"])[None, :] ** 2)
-    forces = np.unique(np.atleast_1d(values["normal_force"])[:, None] / e_star.ravel()[None, :])
+    with np.errstate(over="ignore"):     # a force beyond the table by 1e300 is refused below, as any beyond it
+        forces = np.unique(np.atleast_1d(values["normal_force"])[:, None] / e_star.ravel()[None, :])
     reach = float(profile.normal_force(end))
     if forces.max() > reach:
         most = float(np.max(values["normal_force"]))
