@@ -120,3 +120,23 @@ def test_hertz_mindlin_tangential_field_across_the_thin_slip_annulus(fx):
     for k in "xyz":
         want = (ld(2) / ld(math.pi) * ld(mu) * (outer[k] - s * s * inner[k])).astype(float)
         assert np.all(np.abs(got[k] - want) <= 1e-12 * np.maximum(np.abs(want), scale)), k
+
+
+def test_tangential_force_with_delta_near_gross_slip_is_refused_or_right():
+    """With delta given, F_N is derived and carries its rounding, which 1 - fx magnifies (c/a was 7e-5
+    off at 1 - fx = 1e-12): within 1e-3 of mu F_N the recipe is refused naming the way out, below it
+    the stick radius meets 1e-12 against 50 digits."""
+    E, nu, R, delta, mu = 2e11, 0.3, 0.01, 1e-6, 0.3
+    e_star = mp.mpf(E) / (1 - mp.mpf(nu) ** 2)
+    a = mp.sqrt(mp.mpf(R) * mp.mpf(delta))
+    limit = mu * 4 * e_star * a ** 3 / (3 * R)              # Hertz F_N of delta
+    base = {"E": E, "nu": nu, "R": R, "delta": delta, "mu": mu, "x": 0.0}
+    with pytest.raises(sf.RecipeError, match="give normal_force instead of delta, or the load as fx"):
+        sf.generate({"scenario": "parabolic",
+                     "parameters": {**base, "tangential_force": float(limit * (1 - mp.mpf(1e-6)))}})
+    loads = [float(limit * (1 - mp.mpf(e))) for e in (0.5, 1e-2, 1.001e-3)]
+    ds = sf.generate({"scenario": "parabolic", "parameters": {**base, "tangential_force": loads},
+                      "output": {"variables": ["stick_radius"]}}).compute()
+    for got, q in zip(ds.stick_radius.values, loads):
+        want = a * mp.cbrt(1 - mp.mpf(q) / limit)
+        assert abs(got - want) <= 1e-12 * want, (q, got, want)

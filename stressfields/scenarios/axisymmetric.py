@@ -626,6 +626,11 @@ def load_range_problems(kind: str, values) -> list[str]:
             f"computed to full precision; with E = {float(np.min(values['E'])):.6g} Pa and this geometry, {what}"]
 
 
+#: with delta given, tangential_force is accepted up to (1 - this) mu F_N: the relative rounding of the
+#: derived F_N (at most ~1e-15) over 1 - fx stays below the stick radius's 1e-12
+NEAR_GROSS_SLIP = 1e-3
+
+
 def _force_limit(kind: str, values, mu: float) -> list[str]:
     """tangential_force <= mu F_N at every point of the sweep: against the least mu F_N (F_N grows with
     delta or normal_force, with E and with nu)."""
@@ -643,8 +648,15 @@ def _force_limit(kind: str, values, mu: float) -> list[str]:
         except ValueError:          # beyond a tabulated profile: check_profile says so
             return []
     limit = mu * least
-    if force <= limit:
+    if force <= limit and ("normal_force" in values or force <= (1.0 - NEAR_GROSS_SLIP) * limit):
         return []
+    if force <= limit:
+        # F_N of delta carries its rounding (~1e-16, more through the profile's constants), which
+        # 1 - fx would magnify: c/a = (1 - fx)^(1/(n+1)) was 7e-5 off at 1 - fx = 1e-12
+        return [f"tangential_force = {force!r} N is within {NEAR_GROSS_SLIP:g} of mu F_N = {limit!r} N with delta "
+                "given: the stick radius there would follow the rounding of F_N(delta) rather than the load; give "
+                f"normal_force instead of delta, or the load as fx, or tangential_force <= "
+                f"{(1.0 - NEAR_GROSS_SLIP) * limit!r} N"]
     return [f"tangential_force = {force!r} N exceeds mu F_N = {limit!r} N (mu = {mu!r}, F_N = {least!r} N), the "
             "largest tangential force the contact carries (the onset of gross slip, fx = 1); give "
             f"tangential_force <= {limit!r} N"]
