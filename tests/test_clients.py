@@ -141,6 +141,30 @@ def test_float32_error_estimate_stays_an_upper_bound(tmp_path):
     assert np.all(stored.astype(np.float64) <= exact * (1 + 2.0 ** -23))
 
 
+def test_float32_below_its_normal_range_meets_the_stated_absolute_rule(tmp_path):
+    """Subnormal float32 keeps fewer than 24 bits: there the note (and the README) promise 1.4e-45
+    absolute, not 6e-8 relative. A physical cone with a tiny modulus puts its stresses across
+    float32's normal/subnormal border (1.2e-38) and below its smallest subnormal."""
+    recipe = {"scenario": "conical", "parameters": {"E": 1e-33, "theta": 0.1, "delta": 1e-3, "mu": 0.3,
+                                                    "ux0": 0.01, "x": {"start": -3e-3, "stop": 3e-3, "num": 41},
+                                                    "z": [0.0, 1e-3, 1e-1, 10.0]},
+              "output": {"variables": ["sigma_xx", "sigma_zz"]}}
+    ds = sf.generate(recipe)
+    exact = ds.compute()
+    with xr.open_dataset(sf.write(ds, tmp_path / "f32.nc", dtype="float32")) as got:
+        for name in ("sigma_xx", "sigma_zz"):
+            ref, stored = exact[name].values, got[name].values.astype(np.float64)
+            assert "1.4e-45 absolute below |value| = 1.2e-38" in got[name].attrs["stressfields_accuracy"]
+            small = np.isfinite(ref) & (np.abs(ref) < 2.0 ** -126)
+            assert small.any() and (np.abs(ref) >= 2.0 ** -126).any()     # both sides of the border
+            error = np.abs(stored - ref)
+            assert np.all(error[small] <= 1.4e-45)
+            big = np.isfinite(ref) & ~small
+            assert np.all(error[big] <= 2.0 ** -24 * np.abs(ref[big]))
+            # the relative promise alone would not hold there: the rule is needed
+            assert np.any(error[small] > 2.0 ** -24 * np.abs(ref[small]))
+
+
 def test_a_float_beyond_float32_is_refused_not_stored_as_inf(tmp_path):
     ds = xr.Dataset({"f": ("x", np.array([1.0, 1e300]))}, coords={"x": [0.0, 1.0]})
     with pytest.raises(sf.OutputError, match="exceeds the float32 range"):

@@ -211,6 +211,9 @@ BASE = {**F3, "a": 0.3}
     ({"wavenumbers": [1, 11.5, 40]}, ["wavenumbers = [1, 11.5, 40]", "11.5", "integer >= 1"]),
     ({"wavenumbers": [1, 11]}, ["amplitudes has 3", "wavenumbers has 2"]),
     ({"wavenumbers": [2, 11, 40]}, ["wavenumbers = [2, 11, 40]", "start with 1"]),
+    # a contact costs ~n_max^2: refused before work (1e12 ran for ever), the bound itself accepted below
+    ({"wavenumbers": [1, 11, 1e12]}, ["wavenumbers = [1, 11, 1000000000000]", "exceeds 500", "[1, 500]"]),
+    ({"wavenumbers": [1, 501, 40]}, ["501 exceeds 500", "[1, 500]"]),
     ({"amplitudes": [0.0, 0.01, 0.00075]}, ["amplitudes = [0, 0.01, 0.00075]", "> 0"]),
     ({"domain": "flat"}, ["domain = 'flat'", "'periodic', 'nonperiodic'"]),
     ({"lambda_1": 1e-3}, ["lambda_1", "give 'E'"]),
@@ -218,6 +221,12 @@ BASE = {**F3, "a": 0.3}
 ])
 def test_bad_recipes_exit_2_naming_key_value_and_range(tmp_path, capsys, change, words):
     _exit_2(tmp_path, capsys, {"scenario": "wavy", "parameters": {**BASE, **change}}, words)
+
+
+def test_the_largest_wavenumber_is_accepted():
+    recipe = {"scenario": "wavy", "parameters": {"amplitudes": [0.5, 0.001], "wavenumbers": [1, 500], "a": 0.3}}
+    from stressfields.recipe import load
+    assert load(recipe).values["wavenumbers"][-1] == 500
 
 
 def test_approximation_refuses_the_periodic_domain(tmp_path, capsys):

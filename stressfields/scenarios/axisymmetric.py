@@ -270,15 +270,18 @@ def contact(names, p: Mapping[str, Any], profile: Profile, physical: bool) -> tu
 def tangential_load(names, p: Mapping[str, Any], profile: Profile, physical: bool, a) -> tuple:
     """ux0 = u_x0/delta for the kernels, from ux0, fx or tangential_force (Cattaneo–Mindlin in the MDR,
     docs/theory/axisymmetric.md (A32)-(A34), (A37)), and the requested ones of ux0, fx, tangential_force."""
-    from ..physics.axisymmetric.profiles import displacement_ratio, force_ratio, slip_of_displacement, slip_ratio
+    from ..physics.axisymmetric.profiles import (displacement_ratio, force_ratio, slip_of_displacement, slip_ratio,
+                                                 stick_radius_of_force)
 
     nu, mu = _f(p, "nu"), _f(p, "mu")
     if "ux0" in p:
         ux0 = _f(p, "ux0")
-        fx = None
+        fx = c = None
     else:
-        fx = _f(p, "fx") if "fx" in p else _ratio_of_force(p, profile, a)
-        ux0 = displacement_ratio(slip_ratio(profile, a, fx), nu, mu)
+        fx, keep = _ratio_of_force(p, profile, a) if "tangential_force" in p else (_f(p, "fx"), 1.0 - _f(p, "fx"))
+        ux0 = displacement_ratio(slip_ratio(profile, a, fx, keep), nu, mu)
+        # the stick radius from the force itself (not through ux0): F_N(c) = (1 - fx) F_N(a), (A107)
+        c = stick_radius_of_force(profile, a, keep)
     out: dict[str, np.ndarray] = {}
     if "ux0" in names:
         out["ux0"] = ux0
@@ -288,7 +291,7 @@ def tangential_load(names, p: Mapping[str, Any], profile: Profile, physical: boo
         out["fx"] = fx
     if "tangential_force" in names:
         out["tangential_force"] = fx * mu * _normal_force(p, profile, a)
-    return ux0, out
+    return ux0, c, out
 
 
 def _normal_force(p, profile, a) -> np.ndarray:
@@ -297,13 +300,18 @@ def _normal_force(p, profile, a) -> np.ndarray:
     return _f(p, "normal_force") if "normal_force" in p else profile.normal_force(a) * effective_modulus(p)
 
 
-def _ratio_of_force(p, profile, a) -> np.ndarray:
-    """fx = F_x/(mu F_N) of tangential_force; 0 without force (also at mu = 0, which the check allows only
-    then); at most 1 (the check refuses more than mu F_N: the ratio exceeds 1 only by rounding)."""
-    force = _f(p, "tangential_force")
-    limit = _f(p, "mu") * _normal_force(p, profile, a)
+def _ratio_of_force(p, profile, a) -> tuple[np.ndarray, np.ndarray]:
+    """fx = F_x/(mu F_N) of tangential_force and 1 - fx formed without cancellation
+    (``profiles.remaining_force``); fx 0 without force (also at mu = 0, which the check allows only
+    then); at most 1 (the check refuses more than mu F_N: the ratio exceeds 1 only by rounding), and 1
+    where 1 - fx is 0."""
+    from ..physics.axisymmetric.profiles import remaining_force
+
+    force, mu, normal = _f(p, "tangential_force"), _f(p, "mu"), _normal_force(p, profile, a)
+    keep = remaining_force(force, mu, normal)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(force == 0.0, 0.0, np.minimum(force / limit, 1.0))
+        fx = np.where(force == 0.0, 0.0, np.where(keep <= 0.0, 1.0, np.minimum(force / (mu * normal), 1.0)))
+    return fx, keep
 
 
 def surface_point(p: Mapping[str, Any], physical: bool, a, keys: tuple[str, ...] = ("x", "y")) -> tuple:
@@ -323,7 +331,7 @@ def _evaluate(kind: str | None):
         a, out = contact(names, p, profile, physical)
         if set(names) <= set(CONTACT):      # their group's block carries no tangential parameter
             return out
-        ux0, loads = tangential_load(names, p, profile, physical, a)
+        ux0, stick, loads = tangential_load(names, p, profile, physical, a)
         out.update(loads)
         p = {**p, "ux0": ux0}
         local = [n for n in names if n in ax.FIELDS]
@@ -335,8 +343,8 @@ def _evaluate(kind: str | None):
         if not local:
             return out
         values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=_f(p, "nu"),
-                              mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"], rtol=options["rtol"],
-                              scale=scale, dpdz_scale=dpdz_scale)
+                              mu=_f(p, "mu"), ux0=_f(p, "ux0"), stick=stick, method=options["method"],
+                              rtol=options["rtol"], scale=scale, dpdz_scale=dpdz_scale)
         if "stick_radius" in values and not physical:
             values["stick_radius"] = values["stick_radius"] / a
         out.update(values)
@@ -394,6 +402,9 @@ def check_profile(values, physical, method):
         if not physical and r[-1] < 1.0:
             problems.append(f"profile_r must cover the contact, r/a in [0, 1]; it ends at {r[-1]!r}")
         radii = [1.0] if not physical and r[-1] >= 1.0 else []
+        floor = _tabulated_floor(profile, values) if physical and "E" in values else None
+        if floor:
+            return problems + [floor]
         if physical and "delta" in values:
             deltas = np.atleast_1d(values["delta"])
             reach = float(profile.depth(r[-1]))
@@ -458,7 +469,8 @@ def _radii_of_force(values, profile, end: float) -> tuple[list[float], str | Non
     from ..physics.axisymmetric.profiles import radius_at_force
 
     e_star = np.atleast_1d(values["E"])[:, None] / (1.0 - np.atleast_1d(values["nu"])[None, :] ** 2)
-    forces = np.unique(np.atleast_1d(values["normal_force"])[:, None] / e_star.ravel()[None, :])
+    with np.errstate(over="ignore"):     # a force beyond the table by 1e300 is refused below, as any beyond it
+        forces = np.unique(np.atleast_1d(values["normal_force"])[:, None] / e_star.ravel()[None, :])
     reach = float(profile.normal_force(end))
     if forces.max() > reach:
         most = float(np.max(values["normal_force"]))
@@ -466,6 +478,48 @@ def _radii_of_force(values, profile, end: float) -> tuple[list[float], str | Non
                     f"contact reaches the end of the table, r = {end!r} m (with E* = {float(e_star.min())!r} Pa); "
                     "extend profile_r")
     return [float(v) for v in radius_at_force(profile, forces)], None
+
+
+def _tabulated_floor(profile, values) -> str | None:
+    """Why the smallest load of a tabulated profile is too small, or None: every quantity of its
+    contact (a, a^2, delta, F_N/E*, p_m/E* and F_N, p_m at every E* of the sweep) must stay at or above
+    ``LOAD_RANGE[0]``; they all grow with a, so the smallest admissible radius is a bisection away and
+    the load's floor is the load at that radius (the ceiling is the end of the table, checked after)."""
+    from ..physics.axisymmetric.profiles import SMALLEST_RADIUS
+    from ..physics.roots import bisect
+
+    control = "normal_force" if "normal_force" in values else "delta"
+    if control not in values:
+        return None
+    nu = np.atleast_1d(values.get("nu", NU.default))
+    e_low = float(np.min(values["E"])) / (1.0 - float(np.min(nu)) ** 2)
+    e_high = float(np.max(values["E"])) / (1.0 - float(np.max(nu)) ** 2)
+    tiny, top = LOAD_RANGE[0], float(profile.max_radius)
+
+    def below(a):
+        force = np.asarray(profile.normal_force(a), dtype=float)
+        with np.errstate(under="ignore"):
+            pm = force / (math.pi * a * a)
+            least = np.minimum.reduce([a, a * a, np.asarray(profile.depth(a), dtype=float), force, pm,
+                                       force * e_low, pm * e_low])
+        return least < tiny
+
+    if top <= SMALLEST_RADIUS or below(np.array(top)):
+        return None                         # a table too small to hold any contact: said elsewhere
+    a_min = float(bisect(below, np.array(SMALLEST_RADIUS), np.array(top), 66, geometric=True)) * (1.0 + 1e-12)
+    if control == "normal_force":
+        floor = float(profile.normal_force(a_min)) * e_high
+        unit = "N"
+    else:
+        floor = float(profile.depth(a_min))
+        unit = "m"
+    least = float(np.min(values[control]))
+    if least >= floor:
+        return None
+    return (f"{control} = {least!r} {unit} is outside the range where the contact's quantities (a, delta, F_N, "
+            f"F_N/E*, p_m, p_m/E*) stay within [{LOAD_RANGE[0]:g}, {LOAD_RANGE[1]:g}] in SI units and are computed "
+            f"to full precision; with E = {float(np.min(values['E'])):.6g} Pa and this table, give {control} >= "
+            f"{floor:.3g} {unit} (and at most the load at the end of the table)")
 
 
 def check_load(kind: str | None, values, physical) -> list[str]:
@@ -479,9 +533,113 @@ def check_load(kind: str | None, values, physical) -> list[str]:
         if np.any(load > 0.0) and np.any(mu == 0.0):
             problems.append(f"{key} = {float(load.max())!r} with mu = 0: a contact without friction carries no "
                             f"tangential force; give mu > 0 or {key} = 0")
+    if physical:
+        problems += load_range_problems(kind or values.get("profile", PROFILE.default), values)
     if physical and "tangential_force" in values and not problems:
         problems += _force_limit(kind or values.get("profile", PROFILE.default), values, float(mu.min()))
     return problems
+
+
+#: the magnitudes every derived quantity of the normal contact must keep (natural logs): well inside
+#: the normal range of float64 (2.2e-308 to 1.8e308), so that the closed forms, which form powers of
+#: the contact radius and products with the profile's constants, never round to subnormal numbers
+#: (1e-310 N on a 10 mm steel ball gave a^3 52 % off), to 0 or to inf
+LOAD_RANGE = (1e-300, 1e300)
+
+
+def _geometry_law(kind: str, values) -> tuple[float, float] | None:
+    """(n, B) of the power-law families, g(a) = (B/n) a^n and F_N/E* = 2B a^(n+1)/(n+1)
+    (docs/theory/axisymmetric.md (A5)-(A7)); None for a flat punch or a tabulated profile."""
+    if kind == "cone" and "theta" in values:
+        return 1.0, 0.5 * math.pi * math.tan(float(values["theta"]))
+    if kind == "paraboloid" and "R" in values:
+        return 2.0, 2.0 / float(values["R"])
+    if kind == "power_law" and "A" in values and "n" in values:
+        n = float(values["n"])
+        kappa = math.sqrt(math.pi) * math.exp(math.lgamma(0.5 * n + 1.0) - math.lgamma(0.5 * n + 0.5))
+        return n, kappa * float(values["A"]) * n
+    return None
+
+
+def _load_logs(kind: str, values, control: str) -> dict[str, tuple[float, float, float]] | None:
+    """The natural logs of the normal contact's quantities as linear functions alpha*log(load) +
+    beta*log(E*) + gamma of the load (``control``: normal_force or delta) and E*, name -> (alpha, beta,
+    gamma); None where the profile's quantities are not closed forms (tabulated: only F_N/E*)."""
+    force = control == "normal_force"
+    law = _geometry_law(kind, values)
+    if law is not None:
+        n, B = law
+        # log a = (log F - log E* - log(2B/(n+1)))/(n+1), or (log delta - log(B/n))/n
+        la = ((1 / (n + 1), -1 / (n + 1), -math.log(2 * B / (n + 1)) / (n + 1)) if force
+              else (1 / n, 0.0, -math.log(B / n) / n))
+        power = {f"a^{p:g}": tuple(p * v for v in la) for p in (2.0, n, n + 1.0)}
+        shifted = lambda k, c, e=0.0: (k * la[0], k * la[1] + e, k * la[2] + c)
+        out = {"contact radius a": la, **power, "delta": shifted(n, math.log(B / n)),
+               "F_N/E*": shifted(n + 1, math.log(2 * B / (n + 1))),
+               "p_m/E*": shifted(n - 1, math.log(2 * B / (math.pi * (n + 1))))}
+    elif kind == "flat_punch" and "radius" in values:
+        lr = math.log(float(values["radius"]))
+        # delta = F_N/(2 E* radius); F_N/E* = 2 radius delta; p_m/E* = 2 delta/(pi radius)
+        ld = (1.0, -1.0, -math.log(2.0) - lr) if force else (1.0, 0.0, 0.0)
+        out = {"contact radius a": (0.0, 0.0, lr), "a^2": (0.0, 0.0, 2 * lr), "delta": ld,
+               "F_N/E*": (ld[0], ld[1], ld[2] + math.log(2.0) + lr),
+               "p_m/E*": (ld[0], ld[1], ld[2] + math.log(2.0 / math.pi) - lr)}
+    elif force:
+        out = {"F_N/E*": (1.0, -1.0, 0.0)}
+    else:
+        return None
+    out["F_N"] = (out["F_N/E*"][0], out["F_N/E*"][1] + 1.0, out["F_N/E*"][2])
+    out["p_m"] = (out["p_m/E*"][0], out["p_m/E*"][1] + 1.0, out["p_m/E*"][2]) if "p_m/E*" in out else None
+    return {k: v for k, v in out.items() if v is not None}
+
+
+def load_range_problems(kind: str, values) -> list[str]:
+    """The normal load (normal_force or delta) whose contact would leave ``LOAD_RANGE`` in any of a, its
+    powers, delta, F_N, F_N/E*, p_m, p_m/E* (or E* itself), at any corner of the sweep, refused with the
+    range of the load that keeps them all inside, for the recipe's E, nu and geometry.  Every quantity
+    is a linear function of log(load) and log(E*), so the corners of the sweep bound it."""
+    control = "normal_force" if "normal_force" in values else "delta"
+    if control not in values or "E" not in values:
+        return []
+    loads = np.asarray(values[control], dtype=float)
+    e_star = [float(np.min(values["E"])) / (1.0 - float(np.min(values.get("nu", NU.default))) ** 2),
+              float(np.max(values["E"])) / (1.0 - float(np.max(values.get("nu", NU.default))) ** 2)]
+    lo, hi = (math.log(v) for v in LOAD_RANGE)
+    if not all(lo <= math.log(e) <= hi for e in e_star if e > 0.0):
+        return [f"E = {float(np.min(values['E'])):.6g} Pa gives E* = E/(1-nu^2) = {min(e_star):.6g} Pa, outside "
+                f"[{LOAD_RANGE[0]:g}, {LOAD_RANGE[1]:g}] Pa; give E >= {LOAD_RANGE[0]:g} Pa"]
+    try:
+        logs = _load_logs(kind, values, control)
+    except (ValueError, OverflowError, ZeroDivisionError):     # a geometry out of its range: said elsewhere
+        return []
+    if not logs:
+        return []
+    low, high = -math.inf, math.inf           # log(load) keeping every quantity inside, at both E* corners
+    for alpha, beta, gamma in logs.values():
+        for le in (math.log(e) for e in e_star):
+            if alpha == 0.0:
+                if not lo <= beta * le + gamma <= hi:
+                    low, high = math.inf, -math.inf
+                continue
+            ends = sorted(((lo - beta * le - gamma) / alpha, (hi - beta * le - gamma) / alpha))
+            low, high = max(low, ends[0]), min(high, ends[1])
+    declared = NORMAL_FORCE if control == "normal_force" else DELTA
+    high = min(high, math.log(declared.high))
+    smallest, largest = float(np.min(loads)), float(np.max(loads))
+    if low <= math.log(smallest) and math.log(largest) <= high:
+        return []
+    unit = "N" if control == "normal_force" else "m"
+    bad = smallest if not low <= math.log(smallest) else largest
+    what = (f"give {control} in [{math.exp(low):.3g}, {math.exp(high):.3g}] {unit}" if low <= high
+            else "no load does: change E or the geometry")
+    return [f"{control} = {bad!r} {unit} is outside the range where the contact's quantities (a, delta, F_N, "
+            f"F_N/E*, p_m, p_m/E*) stay within [{LOAD_RANGE[0]:g}, {LOAD_RANGE[1]:g}] in SI units and are "
+            f"computed to full precision; with E = {float(np.min(values['E'])):.6g} Pa and this geometry, {what}"]
+
+
+#: with delta given, tangential_force is accepted up to (1 - this) mu F_N: the relative rounding of the
+#: derived F_N (at most ~1e-15) over 1 - fx stays below the stick radius's 1e-12
+NEAR_GROSS_SLIP = 1e-3
 
 
 def _force_limit(kind: str, values, mu: float) -> list[str]:
@@ -501,8 +659,15 @@ def _force_limit(kind: str, values, mu: float) -> list[str]:
         except ValueError:          # beyond a tabulated profile: check_profile says so
             return []
     limit = mu * least
-    if force <= limit:
+    if force <= limit and ("normal_force" in values or force <= (1.0 - NEAR_GROSS_SLIP) * limit):
         return []
+    if force <= limit:
+        # F_N of delta carries its rounding (~1e-16, more through the profile's constants), which
+        # 1 - fx would magnify: c/a = (1 - fx)^(1/(n+1)) was 7e-5 off at 1 - fx = 1e-12
+        return [f"tangential_force = {force!r} N is within {NEAR_GROSS_SLIP:g} of mu F_N = {limit!r} N with delta "
+                "given: the stick radius there would follow the rounding of F_N(delta) rather than the load; give "
+                f"normal_force instead of delta, or the load as fx, or tangential_force <= "
+                f"{(1.0 - NEAR_GROSS_SLIP) * limit!r} N"]
     return [f"tangential_force = {force!r} N exceeds mu F_N = {limit!r} N (mu = {mu!r}, F_N = {least!r} N), the "
             "largest tangential force the contact carries (the onset of gross slip, fx = 1); give "
             f"tangential_force <= {limit!r} N"]

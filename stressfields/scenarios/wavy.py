@@ -37,6 +37,11 @@ REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy s
              "the plane-strain modulus E* = E/(1-nu^2); see the errata of the theory page)")
 
 PSTAR = "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)"
+#: the largest wavenumber n_i a recipe may give: the periodic closed form sums n_max terms at each of
+#: ~50 n_max quadrature nodes of the continuous-contact test, and the single-indenter series is
+#: ~a n_max/2 terms long, so a periodic contact costs ~n_max^2 (measured: 300: 0.9 s, 500: 2.0 s,
+#: 1000: 6.2 s, 3000: 80 s; 1e12 would never end)
+MAX_WAVENUMBER = 500
 DOMAINS = ("periodic", "nonperiodic")
 DELTA_1 = "the amplitude Delta_1 of the base wave"
 HALF_WIDTH = "the contact half-width a"
@@ -200,6 +205,10 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
     if bad:
         problems.append(f"wavenumbers = {_show(wns)}: {_show(bad[0])} is not allowed; each must be an integer "
                         ">= 1 (wavelength lambda_1/n_i)")
+    elif max(wns) > MAX_WAVENUMBER:
+        problems.append(f"wavenumbers = {_show(wns)}: {_show(max(wns))} exceeds {MAX_WAVENUMBER}, the largest "
+                        f"wavenumber allowed; each must be an integer in [1, {MAX_WAVENUMBER}] (the cost of a "
+                        "contact grows with the square of the largest one)")
     elif wns[0] != 1:
         problems.append(f"wavenumbers = {_show(wns)} must start with 1: the first row is the base wave, "
                         "which fixes lambda_1")

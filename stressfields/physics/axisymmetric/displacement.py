@@ -311,7 +311,14 @@ def displacements(names, profile: Profile, x, y, z, *, a, nu, mu, ux0, c, mu_ker
     shape, (x, y, z, a, nu, c, muk) = flat_arguments("displacement", method, x, y, z, a, nu, c, mu_kernel)
     _validate(z, a, c, nu, muk, profile, rtol)
     normal = _normal(x, y, z, a, nu, profile, method, rtol)
-    tangential = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol)
+    slip = None
+    if profile.closed is not None and profile.closed[0] == "paraboloid":
+        ux, mu_ = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() for v in (ux0, mu))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slip = np.where(mu_ > 0.0, 2.0 * (1.0 - nu) / (2.0 - nu) * ux / mu_, 1.0)   # (A32): 1 - (c/a)^2
+            # only where u_x0 is the one of this c (the traction is fixed by c and mu_kernel)
+            slip = np.where((slip > 0.0) & (np.abs(1.0 - slip - (c / a) ** 2) <= 1e-13), slip, np.nan)
+    tangential = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol, slip)
     return {n: (normal[n[-1]] + tangential[n[-1]]).reshape(shape) for n in names}
 
 
@@ -362,9 +369,55 @@ def _normal(x, y, z, a, nu, profile, method, rtol):
     return {k: v / delta for k, v in total.items()}
 
 
-def _hertz_mindlin(x, y, z, a, c, nu, mu):
+#: Gauss–Legendre nodes of the thin-annulus difference of ``_hertz_mindlin``: at a distance of at least
+#: 4 widths from the annulus the integrand's nearest singularity lies beyond the Bernstein ellipse
+#: of parameter 16, so 8 nodes leave 16^-16 (5e-20) of the integral
+_ANNULUS_NODES, _ANNULUS_REACH = 8, 4.0
+#: below this slip ratio rho = 1 - (c/a)^2 the plain difference of (I41) would lose more than 1e-12
+#: (1e-16/rho): only there the superposition over [c, a] replaces it
+_THIN = 1e-4
+#: nearer: panels growing geometrically (ratio 2) from the ring point nearest to the field point, each
+#: mapped by t = lo + (hi - lo)(1 - cos(pi s))/2 (the one-sided square-root kink at the ring, z = 0,
+#: becomes analytic); every panel's singularity lies at least its own length away, 24 nodes each
+_NEAR_NODES, _NEAR_LEVELS = 24, 60
+
+
+def _annulus_near(x, y, z, a, w, nu):
+    """int_{a-w}^a t U(p/t) dt (U: ``sliding_punch_displacement_unit``) at points next to the thin
+    annulus, in offsets s = a - t from the outer edge, so that the panels' widths, and so the weights,
+    carry w and not a rounded a - w."""
+    r = np.hypot(x, y)
+    s_star = np.clip(a - r, 0.0, w)                       # offset of the ring point nearest to the point
+    d = np.hypot((a - r) - s_star, z)                     # its distance
+    # closer than w 2^-59 the point is on the ring for the rule: the cosine map takes the kink
+    steps = np.where(d > w * 2.0 ** (1 - _NEAR_LEVELS), d, 0.0)[:, None] * 2.0 ** np.arange(_NEAR_LEVELS)[None, :]
+    left, right = np.clip(s_star[:, None] - steps, 0.0, None), np.minimum(s_star[:, None] + steps, w[:, None])
+    ends = np.concatenate([np.zeros((r.size, 1)), w[:, None], s_star[:, None], left, right], axis=1)
+    ends = np.sort(ends, axis=1)
+    q, wq = gauss_legendre(_NEAR_NODES)
+    lo, hi = ends[:, :-1, None], ends[:, 1:, None]
+    s = lo + (hi - lo) * 0.5 * (1.0 - np.cos(math.pi * q))
+    ws = (hi - lo) * 0.5 * math.pi * np.sin(math.pi * q) * wq
+    s, ws = s.reshape(r.size, -1), ws.reshape(r.size, -1)
+    t = a[:, None] - s
+    rm1 = ((r - a)[:, None] + s) / t                      # r/t - 1 without the rounding of t
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        unit = sliding_punch_displacement_unit(x[:, None] / t, y[:, None] / t, z[:, None] / t, nu[:, None], rm1=rm1)
+    return {k: np.sum(np.where(ws > 0.0, ws * t * v, 0.0), axis=1) for k, v in unit.items()}
+
+
+def _hertz_mindlin(x, y, z, a, c, nu, mu, slip=None):
     """(I41) for partial slip: the traction mu p0 [sqrt(1 - r^2/a^2) - (c/a) sqrt(1 - r^2/c^2)] per
-    E*, p0 = 2a/(pi R), delta = a^2/R: u/delta = mu (2/pi) [V(x/a) - (c/a)^2 V(x/c)]."""
+    E*, p0 = 2a/(pi R), delta = a^2/R: u/delta = mu (2/pi) [V(x/a) - (c/a)^2 V(x/c)].
+
+    As fx -> 0 the two terms cancel (c -> a): the difference lost 1e-16/fx of its value (8e-8 at
+    fx = 1e-9).  Where ``slip`` = 1 - (c/a)^2 is given (exactly, from u_x0, (A32)) and below
+    ``_THIN``, the difference is instead the superposition of sliding punches over [c, a]
+    (docs/theory/interior.md (I43), (I45)): t^2 V(p/t) has the derivative pi t U(p/t), U the unit
+    sliding punch (I39), so u/delta = (2 mu / a^2) int_c^a t U(p/t) dt, with the annulus width
+    w = a slip / (1 + sqrt(1 - slip)) free of the rounding of c: by Gauss–Legendre in
+    t = a - w (1 - s)/2 at points at least 4 widths from the annulus, on graded panels
+    (``_annulus_near``) nearer."""
     out = {k: v * (2.0 / math.pi) * mu for k, v in hertz_sliding_displacement_unit(x / a, y / a, z / a, nu).items()}
     part = np.flatnonzero(c > 0.0)
     if part.size:
@@ -372,20 +425,41 @@ def _hertz_mindlin(x, y, z, a, c, nu, mu):
         stick = hertz_sliding_displacement_unit(x[part] / cp, y[part] / cp, z[part] / cp, nu[part])
         for k in _KEYS:
             out[k][part] -= (2.0 / math.pi) * mu[part] * (cp / ap) ** 2 * stick[k]
+    if slip is None:
+        return out
+    w = a * slip / (1.0 + np.sqrt(np.clip(1.0 - slip, 0.0, 1.0)))
+    r = np.hypot(x, y)
+    gap = np.hypot(np.where(r < c, c - r, np.where(r > a, r - a, 0.0)), z)
+    thin = np.flatnonzero((c > 0.0) & (slip < _THIN) & (gap >= _ANNULUS_REACH * w))
+    if thin.size:
+        s, ws = gauss_legendre(_ANNULUS_NODES)                # on [0, 1]
+        A, W = a[thin, None], w[thin, None]
+        t = A - W * (1.0 - s[None, :])                        # nodes in (c, a)
+        unit = sliding_punch_displacement_unit(x[thin, None] / t, y[thin, None] / t, z[thin, None] / t,
+                                               nu[thin, None])
+        for k in _KEYS:
+            out[k][thin] = 2.0 * mu[thin] / a[thin] ** 2 * np.sum(W * ws[None, :] * t * unit[k], axis=1)
+    near = np.flatnonzero((c > 0.0) & (slip < _THIN) & (gap < _ANNULUS_REACH * w))
+    for lo in range(0, near.size, 256):                   # (points x 121 panels x 24 nodes) blocks
+        i = near[lo:lo + 256]
+        part = _annulus_near(x[i], y[i], z[i], a[i], w[i], nu[i])
+        for k in _KEYS:
+            out[k][i] = 2.0 * mu[i] / a[i] ** 2 * part[k]
     return out
 
 
-def _tangential(x, y, z, a, c, nu, muk, profile, method, rtol):
+def _tangential(x, y, z, a, c, nu, muk, profile, method, rtol, slip=None):
     out = {k: np.zeros(x.size) for k in _KEYS}
     act = np.flatnonzero((muk > 0.0) & (c < a))
     if not act.size:
         return out
     X, Y, Z, A, C, NU, MU = (v[act] for v in (x, y, z, a, c, nu, muk))
+    slip = None if slip is None else slip[act]
     family = _family(profile, method)
     if family == "flat_punch":
         part = {k: MU * v for k, v in sliding_punch_displacement_unit(X / A, Y / A, Z / A, NU).items()}
     elif family == "paraboloid":
-        part = _hertz_mindlin(X, Y, Z, A, C, NU, MU)
+        part = _hertz_mindlin(X, Y, Z, A, C, NU, MU, slip)
     else:
         part = _sum(X, Y, Z, A, NU, profile, rtol, sliding_punch_displacement_unit, _SLIDING_KERNEL)
         stick = np.flatnonzero(C > 0.0)

@@ -64,7 +64,7 @@ OUTSIDE, STICK, SLIP, NO_TRACTION = 0, 1, 2, 3
 
 
 @quiet
-def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, ux0,
+def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, ux0, stick=None,
            method: str = "auto", rtol: float = 1e-10, scale=1.0,
            dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
     """The requested fields on the surface (z = 0) and below it (z > 0) under normal load and
@@ -90,6 +90,9 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
         route refuses rtol below ``routes.tangential_floor`` (1e-11 for power laws n < 1).
     a : contact radius; nu : Poisson's ratio; mu : coefficient of friction; ux0 : tangential
         rigid-body displacement u_x0 divided by the indentation depth delta.  All broadcast.
+    stick : the stick radius c where the load is given as a force (length units, broadcasting;
+        ``profiles.stick_radius_of_force``: exact as fx -> 1, where c from ux0 loses digits); None:
+        c of ux0 (A32)-(A33).
     method : "auto", "closed" or "quadrature" (``routes.resolve``); rtol : accuracy of the
         quadrature route.
     scale, dpdz_scale : see the module docstring (default: per unit E*).
@@ -102,20 +105,20 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
     names = _known(names, FIELDS)
     if any(n in DISPLACEMENTS for n in names):
         rest = [n for n in names if n not in DISPLACEMENTS]
-        out, route = fields(rest, profile, x, y, z, a=a, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol,
-                            scale=scale, dpdz_scale=dpdz_scale)
-        _, c, mu_k = _stick(*(np.asarray(v, dtype=float) for v in (a, nu, mu, ux0)), profile)
+        out, route = fields(rest, profile, x, y, z, a=a, nu=nu, mu=mu, ux0=ux0, stick=stick, method=method,
+                            rtol=rtol, scale=scale, dpdz_scale=dpdz_scale)
+        _, c, mu_k = _stick(*(np.asarray(v, dtype=float) for v in (a, nu, mu, ux0)), profile, stick)
         out.update(displacements([n for n in names if n in DISPLACEMENTS], profile, x, y, 0.0 if z is None else z,
                                  a=a, nu=nu, mu=mu, ux0=ux0, c=c, mu_kernel=mu_k, method=_dmethod(profile, method),
                                  rtol=rtol))
         return out, route
     spatial = [n for n in names if n in SPATIAL]
     if z is not None and spatial and np.any(np.asarray(z, dtype=float) > 0.0):
-        return _with_depth(names, profile, x, y, z, a=a, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol,
-                           scale=scale, dpdz_scale=dpdz_scale)
+        return _with_depth(names, profile, x, y, z, a=a, nu=nu, mu=mu, ux0=ux0, stick=stick, method=method,
+                           rtol=rtol, scale=scale, dpdz_scale=dpdz_scale)
     route = resolve(profile, method, rtol)
     nu, mu, ux0 = (np.asarray(v, dtype=float) for v in (nu, mu, ux0))
-    c, c_kernel, mu_kernel = _stick(a, nu, mu, ux0, profile)
+    c, c_kernel, mu_kernel = _stick(a, nu, mu, ux0, profile, stick)
     out: dict[str, np.ndarray] = {}
     if "stick_radius" in names:
         out["stick_radius"] = c
@@ -140,18 +143,21 @@ def _dmethod(profile: Profile, method: str) -> str:
     return "auto" if method == "closed" and not has_displacement_closed_form(profile) else method
 
 
-def _stick(a, nu, mu, ux0, profile):
-    """(c, c_kernel, mu_kernel): the stick radius (A32)-(A33) and what the kernels take for it.  A
-    sticking flat punch (c = a with u_x0 > 0 and mu > 0) carries the sliding traction with
-    mu E* delta replaced by G* u_x0 (A37), (A59): the kernels take c = 0, mu = (G*/E*) u_x0/delta."""
+def _stick(a, nu, mu, ux0, profile, stick=None):
+    """(c, c_kernel, mu_kernel): the stick radius (A32)-(A33) (``stick`` where given, broadcast with
+    the rest) and what the kernels take for it.  A sticking flat punch (c = a with u_x0 > 0 and
+    mu > 0) carries the sliding traction with mu E* delta replaced by G* u_x0 (A37), (A59): the
+    kernels take c = 0, mu = (G*/E*) u_x0/delta."""
     c = stick_radius(a, nu, mu, ux0, profile)
+    if stick is not None:
+        c = np.where(ux0 == 0.0, c, np.broadcast_arrays(np.asarray(stick, dtype=float), c)[0])
     if profile.kind != "flat_punch":
         return c, c, mu
     stuck = (c == a) & (ux0 > 0) & (mu > 0)
     return c, np.where(stuck, 0.0, c), np.where(stuck, 2.0 * (1.0 - nu) / (2.0 - nu) * ux0, mu)
 
 
-def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale, dpdz_scale):
+def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, stick, method, rtol, scale, dpdz_scale):
     """``fields`` where some z > 0: the surface fields where z = 0 (the same call as without z, so
     bit for bit the same values), the interior kernels where z > 0; one validity flag."""
     dpdz_scale = scale if dpdz_scale is None else dpdz_scale
@@ -161,7 +167,7 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
     deep = Z > 0.0
     if np.any(~(Z >= 0.0)):
         raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
-    _, C, MU_K = (np.broadcast_to(v, shape) for v in _stick(A, NU, MU, UX0, profile))
+    _, C, MU_K = (np.broadcast_to(v, shape) for v in _stick(A, NU, MU, UX0, profile, stick))
     loaded = deep & (MU_K > 0.0) & (C < A)
     expo, tangential = getattr(profile, "n", None), bool(np.any(loaded))
     route = resolve_depth(profile, method, rtol, expo, z, tangential=tangential)
@@ -170,8 +176,8 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, method, rtol, scale,
     out: dict[str, np.ndarray] = {}
     if not np.all(deep) or any(n in names for n in ("stick_radius", "region")):
         top = [n for n in names if n != "validity" and (n not in _VALUED or not np.all(deep))]
-        out, _ = fields(top, profile, x, y, a=a, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol, scale=scale,
-                        dpdz_scale=dpdz_scale)
+        out, _ = fields(top, profile, x, y, a=a, nu=nu, mu=mu, ux0=ux0, stick=stick, method=method, rtol=rtol,
+                        scale=scale, dpdz_scale=dpdz_scale)
     kw = dict(method=interior_route.kernel, rtol=rtol)
     P = [v[deep] for v in (X, Y, Z, A, NU)]
     T = [v[deep] for v in (X, Y, Z, A, C, NU, MU_K)]   # the arguments of the tangential kernels

@@ -689,15 +689,41 @@ class Tabulated(Profile):
         return self._sums(self._check_radius(a), 3)
 
     def contact_radius(self, delta):
-        """Inverse of ``depth`` (eq. 7, docs/theory/axisymmetric.md (A3)) by 80 bisection steps on
+        """Inverse of ``depth`` (eq. 7, docs/theory/axisymmetric.md (A3)) by ``_relative_root`` on
         [0, r_max] (g is increasing for a monotone profile)."""
         delta = _arr(delta)
         top = float(self.g(self.max_radius))
         if np.any(delta > top * (1.0 + 1e-12)) or np.any(delta < 0.0):
             raise ValueError(f"tabulated profile: depth must lie in [0, {top!r}] (the depth at the end "
                              f"of the table, r = {self.max_radius!r}); got {delta!r}")
-        return bisect(lambda r: self.g(r) < delta, np.zeros(delta.shape), np.full(delta.shape, self.max_radius),
-                      80)
+        return _relative_root(self.g, delta, self.max_radius)
+
+
+#: the smallest contact radius the tabulated inversions resolve (the recipe check refuses loads
+#: whose contact radius would be smaller, docs/theory/axisymmetric.md (A107) and after)
+SMALLEST_RADIUS = 1e-300
+
+
+def _relative_root(increasing, target, top: float) -> np.ndarray:
+    """r in [0, top] with increasing(r) = target, to relative accuracy: 14 halvings of log r on
+    [SMALLEST_RADIUS, top] bracket it within 4.3 % (the ratio e^(log(top/SMALLEST_RADIUS)/2^14),
+    padded), then 64 arithmetic halvings of that bracket leave 2^-64 of the root (an arithmetic
+    bisection of [0, top] alone left an absolute 2^-80 top, so a contact 1e-20 of the table wide
+    came out 1e-4 off, and 1e-100 N on a 4 mm table 1e11 times; the log route alone leaves the
+    rounding of exp, 1e-15 relative); 0 for a zero target."""
+    target = _arr(target)
+    if top <= SMALLEST_RADIUS:
+        return np.zeros(target.shape)
+    above = lambda x: increasing(x) < target
+    lo, hi = np.full(target.shape, SMALLEST_RADIUS), np.full(target.shape, top)
+    width = math.log(top / SMALLEST_RADIUS) / 2.0 ** _LOG_HALVINGS
+    mid = bisect(above, lo, hi, _LOG_HALVINGS, geometric=True)
+    lo, hi = np.maximum(mid * math.exp(-width), lo), np.minimum(mid * math.exp(width), hi)
+    r = bisect(above, lo, hi, 64)
+    return np.where(target > 0.0, r, 0.0)
+
+
+_LOG_HALVINGS = 14
 
 
 # -- constructors (the public API) -------------------------------------------------------------------
@@ -747,7 +773,7 @@ def radius_at_force(profile: Profile, force) -> np.ndarray:
 
     Power-law families: F_N / E* = 2 B a^(n+1) / (n+1) with B = kappa_n A n (A5)-(A7), inverted in
     closed form; flat punch: the punch radius whatever the force (A8, the force fixes the depth);
-    tabulated: the shared bisection (``roots.bisect``, 80 halvings of [0, r_max], as
+    tabulated: the shared bisection (``roots.bisect`` on log a, ``_relative_root``, as
     ``Tabulated.contact_radius``) on F_N, which increases with a for a non-decreasing profile."""
     force = _arr(force)
     n = _load_exponent(profile)
@@ -759,11 +785,46 @@ def radius_at_force(profile: Profile, force) -> np.ndarray:
     if np.any(force > top * (1.0 + 1e-12)) or np.any(force < 0.0):
         raise ValueError(f"tabulated profile: F_N / E* must lie in [0, {top!r}] (the force at the end of "
                          f"the table, r = {profile.max_radius!r}); got {force!r}")
-    return bisect(lambda r: profile.normal_force(r) < force, np.zeros(force.shape),
-                  np.full(force.shape, profile.max_radius), 80)
+    return _relative_root(profile.normal_force, force, float(profile.max_radius))
 
 
-def slip_ratio(profile: Profile, a, fx) -> np.ndarray:
+def remaining_force(force, limit_factor, limit_load) -> np.ndarray:
+    """1 - F_x / (mu F_N) = F_N(c) / F_N(a) of a tangential force F_x = ``force`` and mu F_N =
+    ``limit_factor`` * ``limit_load``, in [0, 1], without cancellation as F_x -> mu F_N: mu F_N is
+    formed exactly as a sum p + e of two doubles (Dekker's product), p - F_x is exact there (Sterbenz),
+    so the result keeps the relative accuracy of its inputs instead of 1e-16 / (1 - fx)."""
+    x, y, q = (_arr(v) for v in (limit_factor, limit_load, force))
+    p = x * y
+    split = 134217729.0                                     # 2^27 + 1: halves of 26 bits
+    with np.errstate(over="ignore", invalid="ignore"):
+        xh = x * split - (x * split - x)
+        yh = y * split - (y * split - y)
+        xl, yl = x - xh, y - yh
+        e = ((xh * yh - p) + xh * yl + xl * yh) + xl * yl   # x * y - p, exactly
+        e = np.where(np.isfinite(e), e, 0.0)                # beyond 1e300 the split overflows: plain p
+        keep = ((p - q) + e) / p
+    # F_x = mu F_N as the product rounds is gross slip (fx = 1), as the recipe check counts it
+    return np.where(q == 0.0, 1.0, np.where(q >= p, 0.0, np.clip(keep, 0.0, 1.0)))
+
+
+def stick_radius_of_force(profile: Profile, a, keep) -> np.ndarray:
+    """Stick radius c of the tangential force with F_N(c) = ``keep`` F_N(a), ``keep`` = 1 - fx
+    (Cattaneo–Mindlin in the MDR, docs/theory/axisymmetric.md (A107)), computed from the force
+    directly (not through u_x0, whose round trip lost up to 7.5e-8 of c as fx -> 1 and made it depend
+    on nu and mu): power laws c = a keep^(1/(n+1)); flat punch: a (stick) below gross slip, 0 at it;
+    tabulated: ``radius_at_force``.  keep = 0 (fx = 1, gross slip) gives 0, keep = 1 gives a."""
+    a, keep = np.broadcast_arrays(_arr(a), _arr(keep))
+    n = _load_exponent(profile)
+    if n is not None:
+        c = a * (np.sqrt(keep) if n == 1.0 else np.cbrt(keep) if n == 2.0 else keep ** (1.0 / (n + 1.0)))
+    elif profile.kind == "flat_punch":
+        c = np.where(keep > 0.0, a, 0.0)
+    else:
+        c = radius_at_force(profile, keep * profile.normal_force(a))
+    return np.where(keep >= 1.0, a, np.where(keep <= 0.0, 0.0, np.minimum(c, a)))
+
+
+def slip_ratio(profile: Profile, a, fx, keep=None) -> np.ndarray:
     """rho = G* u_x0 / (mu E* delta) = [g(a) - g(c)] / g(a) (docs/theory/axisymmetric.md (A32)) of the
     tangential force F_x = fx mu F_N, 0 <= fx <= 1.
 
@@ -771,16 +832,19 @@ def slip_ratio(profile: Profile, a, fx) -> np.ndarray:
     F_N(c) = (1 - fx) F_N(a).  Power laws: (c/a)^(n+1) = 1 - fx and rho = 1 - (1 - fx)^(n/(n+1)),
     evaluated as -expm1 of a log1p (no cancellation as fx -> 0); tabulated: c by ``radius_at_force``;
     flat punch: it sticks whole up to gross slip with F_x = 2 a G* u_x0 (A37), so rho = fx.
-    fx = 1 gives rho = 1, the onset of gross slip (A33)."""
+    fx = 1 gives rho = 1, the onset of gross slip (A33).  ``keep``: 1 - fx where it is known more
+    accurately than fx itself (``remaining_force``), used for fx >= 1/2."""
     fx = _arr(fx)
+    keep = 1.0 - fx if keep is None else _arr(keep)
     n = _load_exponent(profile)
     if n is not None:
         with np.errstate(divide="ignore"):
-            return np.where(fx >= 1.0, 1.0, -np.expm1(n / (n + 1.0) * np.log1p(-np.minimum(fx, 1.0))))
+            log_keep = np.where(fx < 0.5, np.log1p(-np.minimum(fx, 0.5)), np.log(np.maximum(keep, 0.0)))
+            return np.where((fx >= 1.0) | (keep <= 0.0), 1.0, -np.expm1(n / (n + 1.0) * log_keep))
     if profile.kind == "flat_punch":
         return np.minimum(fx, 1.0)
     a = _arr(a)
-    c = radius_at_force(profile, (1.0 - fx) * profile.normal_force(a))
+    c = radius_at_force(profile, keep * profile.normal_force(a))
     ga = profile.g(a)
     return np.where(fx >= 1.0, 1.0, (ga - profile.g(c)) / ga)
 
