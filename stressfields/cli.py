@@ -182,20 +182,43 @@ def _parser() -> argparse.ArgumentParser:
     hsh.add_argument("files", nargs="+", type=Path)
     hsh.set_defaults(func=_hash)
 
-    cmp = sub.add_parser("compare", help="compare your nodal values (e.g. an FE model's; CSV or NetCDF) with "
-                         "the reference at the same points: exit 0 within --tolerance, 1 beyond it, 2 bad input")
+    cmp = sub.add_parser("compare", help="compare your nodal values (an FE model's: CSV, NetCDF, Exodus II, VTU/VTK, "
+                         "XDMF, MED, Gmsh) with the reference at the same points: exit 0 within --tolerance, 1 "
+                         "beyond it, 2 bad input")
     cmp.add_argument("recipe", type=Path, help="recipe TOML file (its [points] and the coordinates the nodes give "
                      "are replaced by the nodes)")
-    cmp.add_argument("user_data", type=Path, help="CSV with a header such as x[mm],y[mm],z[mm],sigma_xx[MPa] "
-                     "(units: " + ", ".join(COMPARE_UNITS) + "; none: the scenario's unit), or NetCDF along one "
-                     "dimension with units attributes")
+    cmp.add_argument("user_data", type=Path, nargs="+", help="file(s) of nodes: CSV with a header such as "
+                     "x[mm],y[mm],z[mm],sigma_xx[MPa] (also X(mm), Node Label, S-S11; units: any pint converts, "
+                     "e.g. " + ", ".join(COMPARE_UNITS[:4]) + ", N/mm^2, psi; none: the scenario's unit), NetCDF "
+                     "with units attributes, Exodus II, or VTU/VTK/XDMF/MED/Gmsh (pip install 'stressfields[fe]'); "
+                     "several files: a mesh sequence, coarse to fine (convergence table)")
     cmp.add_argument("-o", "--output", dest="report_dir", type=Path, required=True,
-                     help="report directory: comparison.nc, report.md, comparison.png")
-    cmp.add_argument("--tolerance", type=float, default=None,
-                     help="largest max |difference| / scale (p_m for stresses) a variable may have (default: "
-                          "report only, exit 0)")
+                     help="report directory: comparison.nc, report.md, report.json, comparison.png")
+    cmp.add_argument("--tolerance", default=None,
+                     help="largest max |difference| / scale (p_m for stresses) a variable may have, or limits of "
+                          "any statistic: max, rms, p50, p95, p99, l2, wl2, wrms, energy (e.g. rms=1e-3,max=0.05); "
+                          "default: report only, exit 0")
     cmp.add_argument("--variables", nargs="+", default=None, help="compare only these value columns")
     cmp.add_argument("--overwrite", action="store_true", help="replace the report files")
+    cmp.add_argument("--no-plot", action="store_true", help="no PNG (faster)")
+    cmp.add_argument("--step", type=int, default=None, help="Exodus II: this time step only (from 1; default: "
+                     "every step, each compared)")
+    cmp.add_argument("--units", default=None, help="units of a format that carries none (VTU, Exodus II, ...): "
+                     "length=mm,stress=MPa,force=N (displacement=um if it differs from length)")
+    cmp.add_argument("--z-up", action="store_true", help="the model's body lies at z <= 0: z, sigma_xz, sigma_yz, "
+                     "u_z (and sigma_rz) change sign")
+    cmp.add_argument("--axisymmetric", action="store_true", help="a 2-D (r, z) model: a 2-D mesh's second "
+                     "coordinate is z; columns r, sigma_rr, sigma_tt (sigma_thetatheta), sigma_rz, u_r")
+    cmp.add_argument("--body", type=int, choices=(1, 2), default=1, help="2: the nodes belong to the second of two "
+                     "identical bodies (the mirror image, z -> -z, tangential traction reversed); a column 'body' "
+                     "gives it per node")
+    cmp.add_argument("--exclude-edge", type=float, default=None, metavar="W", help="report the nodes within W a of "
+                     "the contact edge, the stick edge (or the cone tip) apart, outside the verdict")
+    cmp.add_argument("--remove-rigid-offset", action="store_true", help="subtract the mean displacement difference "
+                     "(a finite model's rigid offset) from u_x, u_y, u_z before comparing")
+    cmp.add_argument("--scale", choices=("p0", "p_m"), default=None, help="the file's stresses are divided by p0 "
+                     "(the pressure at the centre) or by p_m")
+    cmp.add_argument("--h", default=None, help="mesh sizes of a mesh sequence, one per file (default: N^(-1/d))")
     cmp.set_defaults(func=_compare)
 
     bench = sub.add_parser("bench", help="chart accuracy against run time for every method (not a test)")
@@ -210,40 +233,12 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def _compare(args) -> int:
-    """The comparison's three files in REPORT_DIR; the targets are checked before anything is computed."""
-    from .comparison import compare, plot_comparison, report_markdown, summary
+    """The comparison's report in REPORT_DIR (fe/command.py); the targets are checked before anything is
+    computed."""
+    from .fe.command import run
     from .writers import check_target, write
 
-    out = args.report_dir
-    nc, md, png = out / "comparison.nc", out / "report.md", out / "comparison.png"
-    if out.is_dir():
-        check_target(nc, overwrite=args.overwrite)
-        for path in (md, png):
-            if os.path.lexists(path) and not args.overwrite:
-                raise UsageError(f"{path} exists; give --overwrite to replace it")
-    else:
-        _check_out_dir(out, "-o/--output")
-    plotting = _has_matplotlib()
-    ds = compare(args.recipe, args.user_data, tolerance=args.tolerance, variables=args.variables)
-    try:
-        out.mkdir(parents=True, exist_ok=True)
-    except OSError as exc:
-        raise OutputError(f"-o/--output {out}: {exc.strerror or exc}") from None
-    write(ds, nc, overwrite=args.overwrite)
-    note = ("Quick look: `comparison.png`." if plotting else
-            "No comparison.png: matplotlib is not installed (pip install 'stressfields[plot]').")
-    if plotting:
-        plot_comparison(ds, png)
-    else:
-        print(f"note: {note}", file=sys.stderr)
-    _write_text(md, report_markdown(ds, str(args.recipe), note))
-    for name, s in summary(ds).items():
-        node = "".join(f"{k[6:]} {v}, " for k, v in s.items() if k in ("worst_node", "worst_node_id", "worst_id"))
-        print(f"{name:12s} max |diff|/scale {s['max_abs_difference_over_scale']:.3e} at point {s['worst_point']} "
-              f"({node}{s['worst_coordinates']}); RMS/scale {s['rms_difference_over_scale']:.3e}; relative L2 "
-              f"{s['relative_l2']:.3e}; {s['result']}")
-    print(f"{ds.attrs['compare_result']}; report in {out}")
-    return 1 if ds.attrs["compare_result"] == "FAIL" else 0
+    return run(args, check_target, write, _write_text, _check_out_dir, UsageError)
 
 
 def _has_matplotlib() -> bool:
