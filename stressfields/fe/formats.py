@@ -58,6 +58,7 @@ class Column:
     label: str              # as the file gives it
     unit: str | None        # as written; None: the file gives none
     values: np.ndarray
+    component: bool = False     # a mesh's coordinate, or a component of its vector or tensor array
 
 
 @dataclass
@@ -319,6 +320,7 @@ def _mesh_columns(xyz: np.ndarray, arrays, label: str) -> list[Column]:
     """Coordinate columns x, y(, z) of a mesh and its named arrays: scalars as they are, vectors
     (u, displacement) as u_x, u_y(, u_z), full 3x3 tensors (sigma, stress) as the six components."""
     pairs = [(a, xyz[:, k]) for k, a in enumerate("xyz"[: xyz.shape[1]])]
+    parts = set(range(len(pairs)))          # the columns a frame may rename (coordinates, components)
     n = xyz.shape[0]
     for name, values in arrays:
         arr = np.asarray(values)
@@ -328,7 +330,9 @@ def _mesh_columns(xyz: np.ndarray, arrays, label: str) -> list[Column]:
             raise FormatProblem(f"array {key!r} has {arr.shape[0] if arr.ndim else 0} values for {n} points")
         if arr.ndim == 1 or (arr.ndim == 2 and arr.shape[1] == 1):
             pairs.append((key, arr.reshape(n)))
-        elif low in VECTORS and arr.ndim == 2 and arr.shape[1] in (2, 3):
+            continue
+        start = len(pairs)
+        if low in VECTORS and arr.ndim == 2 and arr.shape[1] in (2, 3):
             pairs += [(f"u_{a}", arr[:, k]) for k, a in enumerate("xyz"[: arr.shape[1]])]
         elif low in TENSORS and arr.size == 9 * n:
             t = arr.reshape(n, 3, 3)
@@ -337,7 +341,11 @@ def _mesh_columns(xyz: np.ndarray, arrays, label: str) -> list[Column]:
         else:
             raise FormatProblem(f"array {key!r} has shape {arr.shape}: give scalars, a displacement vector "
                                 "(u, displacement) or a full 3x3 stress tensor (sigma, stress)")
-    return _columns(pairs, label)
+        parts.update(range(start, len(pairs)))
+    columns = _columns(pairs, label)
+    for k in parts:
+        columns[k].component = True
+    return columns
 
 
 # --- meshio: VTU/VTK, XDMF, MED, Gmsh -------------------------------------------------------------

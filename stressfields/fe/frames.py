@@ -76,7 +76,8 @@ def to_depth_frame(table: Table, *, z_up: bool = False, axisymmetric: bool = Fal
         if not axisymmetric:
             raise FrameProblem("a 2-D mesh (two coordinates): give --axisymmetric for an (r, z) model (the "
                                "second mesh coordinate is z)")
-        renamed = [replace(c, name=_axi_name(c.name)) for c in columns]
+        # the mesh's axes and the components of its arrays are (r, z); a scalar keeps the name it has
+        renamed = [replace(c, name=_axi_name(c.name)) if c.component else c for c in columns]
         seen: dict[str, str] = {}
         for c in renamed:
             if c.name in seen:
