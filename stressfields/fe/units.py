@@ -47,14 +47,14 @@ def factor(unit: str | None, target: str, label: str) -> float:
 
 @functools.lru_cache(maxsize=256)
 def _factor(unit: str, target: str, label: str, given: str) -> float:
+    from ..comparison import UNITS
+
     expected = DIMENSIONS.get(target, repr(target))
+    known = UNITS.get(unit)
+    if known is not None and known[0] == target:
+        return known[1]         # the table's exact factors: no pint registry built (~2 s) for them
     ureg = _registry()
     if ureg is None:
-        from ..comparison import UNITS
-
-        known = UNITS.get(unit)
-        if known is not None and known[0] == target:
-            return known[1]
         allowed = ", ".join([target] + [u for u, (base, _) in UNITS.items() if base == target and u != target])
         raise UnitProblem(f"column {label!r}: unit {given!r} is not {expected} in the table of known units "
                           f"({allowed}; install pint for any other)")
