@@ -336,8 +336,8 @@ def _compare_one(base, data: dict, plan: _Plan, options: Options) -> xr.Dataset:
     if weights is not None:
         ds.attrs["compare_weights"] = f"column {frame.weight.label!r}: integrals are sums of weight x value"
     ds.attrs["compare_points"] = n
-    ds.attrs["compare_dimension"] = plan.table.dim or len({c.name for c in plan.coords
-                                                             if np.ptp(c.values) > 0}) or 1
+    # the dimension the nodes fill (a line of surface nodes: 1, an (r, z) mesh: 2), for h = N^(-1/d)
+    ds.attrs["compare_dimension"] = len({c.name for c in plan.coords if np.ptp(c.values) > 0}) or 1
     return _judge(ds, judged, options.tolerance, energy)
 
 
