@@ -531,7 +531,7 @@ def report_markdown(ds: xr.Dataset, recipe_label: str, png_note: str) -> str:
 def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
     """comparison.png: per variable the difference / S along the one coordinate that varies (points
     on a line), or a map over two varying coordinates coloured by |difference| / S; the worst point ringed."""
-    from .plot import require_matplotlib
+    from .plot import require_matplotlib, save_figure
 
     plt = require_matplotlib()
     names = ds.attrs["compare_variables"].split()
@@ -547,14 +547,7 @@ def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
         ax.set_visible(False)
     fig.suptitle(ds.attrs["title"], fontsize=8, wrap=True)
     fig.tight_layout()
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp.png")
-    try:
-        fig.savefig(tmp, dpi=90)
-        os.replace(tmp, path)
-    finally:
-        plt.close(fig)
-        tmp.unlink(missing_ok=True)
-    return path
+    return save_figure(fig, plt, path)
 
 
 def _panel(ax, ds: xr.Dataset, name: str, varying: list[str]) -> None:

@@ -20,6 +20,8 @@ profile, depth downwards.
 """
 from __future__ import annotations
 
+import os
+
 import textwrap
 from pathlib import Path
 
@@ -48,6 +50,18 @@ def require_matplotlib():
     except ImportError:
         raise ImportError("quick-look PNGs need matplotlib: pip install 'stressfields[plot]'") from None
     return plt
+
+
+def save_figure(fig, plt, path: Path) -> Path:
+    """The figure as PNG at ``path``, atomically (a temporary beside it, renamed when complete); closed."""
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp.png")
+    try:
+        fig.savefig(tmp, dpi=90)
+        os.replace(tmp, path)
+    finally:
+        plt.close(fig)
+        tmp.unlink(missing_ok=True)
+    return path
 
 
 def quicklook(path: str | Path, recipe) -> Path:

@@ -19,6 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
+from ..pointfiles import _is_number
+
 #: a file of nodes is read whole: 1 GB holds ~1e7 nodes of a dozen columns
 MAX_NODE_FILE_BYTES = 1_000_000_000
 #: at most this many nodes per table (a recipe's [points] takes 1e7)
@@ -204,14 +206,6 @@ def read_csv(path: Path) -> Table:
         raise FormatProblem(f"data row {row} (from 0), column {headers[k].strip()!r}: no value (a short row, "
                             "an empty field or NaN)")
     return Table(str(path), _columns(((h, frame.iloc[:, k].to_numpy()) for k, h in enumerate(headers)), str(path)))
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
 
 
 # --- NetCDF and Exodus II ------------------------------------------------------------------------

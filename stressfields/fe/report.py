@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -109,7 +108,7 @@ def report_markdown(datasets: list[xr.Dataset], recipe_label: str, conv: dict | 
 def plot_table(ds: xr.Dataset, path: Path) -> None:
     """Per variable |Δ| / S over the nodes, depth downward (the horizontal axis the radius or x),
     zoomed on the nodes of the largest differences (those above half the largest, with a margin)."""
-    from ..plot import require_matplotlib
+    from ..plot import require_matplotlib, save_figure
 
     plt = require_matplotlib()
     names = ds.attrs["compare_variables"].split()
@@ -140,12 +139,12 @@ def plot_table(ds: xr.Dataset, path: Path) -> None:
     for ax in list(axes.flat)[len(names):]:
         ax.set_visible(False)
     fig.tight_layout()
-    _save(fig, plt, path)
+    save_figure(fig, plt, path)
 
 
 def plot_convergence(conv: dict, path: Path) -> None:
     """Error against mesh size on log axes, per variable: RMS and max of |Δ| / S."""
-    from ..plot import require_matplotlib
+    from ..plot import require_matplotlib, save_figure
 
     plt = require_matplotlib()
     fig, ax = plt.subplots(figsize=(6, 4.5))
@@ -158,15 +157,5 @@ def plot_convergence(conv: dict, path: Path) -> None:
     ax.set(xlabel="mesh size h", ylabel="|Δ| / S", title="convergence against the reference")
     ax.legend(fontsize=6)
     fig.tight_layout()
-    _save(fig, plt, path)
-
-
-def _save(fig, plt, path: Path) -> None:
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp.png")
-    try:
-        fig.savefig(tmp, dpi=90)
-        os.replace(tmp, path)
-    finally:
-        plt.close(fig)
-        tmp.unlink(missing_ok=True)
+    save_figure(fig, plt, path)
 
