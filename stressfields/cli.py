@@ -172,7 +172,8 @@ def _parser() -> argparse.ArgumentParser:
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
     sch.set_defaults(func=_schema)
 
-    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, atomically")
+    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, or "
+                         "a dataset to VTU for ParaView (-o OUT.vtu; pip install 'stressfields[fe]'), atomically")
     exp.add_argument("store", type=Path)
     exp.add_argument("-o", "--output", type=Path, required=True)
     exp.add_argument("--overwrite", action="store_true")
@@ -264,6 +265,11 @@ def _export(args) -> int:
 
     if not args.store.exists():
         raise UsageError(f"{args.store}: no such file or store")
+    if args.output.suffix.lower() == ".vtu":      # for ParaView: fe/vtu.py (the optional fe extra)
+        from .fe.vtu import export_vtu
+
+        export_vtu(args.store, args.output, overwrite=args.overwrite)
+        return 0
     export(args.store, args.output, overwrite=args.overwrite)
     return 0
 
