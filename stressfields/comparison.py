@@ -45,9 +45,8 @@ from .recipe import MAX_RECIPE_BYTES, POINT, RecipeError, load
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Scenario
 
-#: unit -> (the SI unit it converts to, factor): the only conversions made
-UNITS = {"Pa": ("Pa", 1.0), "kPa": ("Pa", 1e3), "MPa": ("Pa", 1e6), "GPa": ("Pa", 1e9),
-         "m": ("m", 1.0), "mm": ("m", 1e-3), "um": ("m", 1e-6), "N": ("N", 1.0), "1": ("1", 1.0)}
+#: unit -> (SI unit, exact factor): the conversions made without pint (fe/units.py converts any other)
+from .fe.units import UNITS  # noqa: E402
 #: CSV files read: 200 MB holds ~1e7 nodes of a few columns (the most a recipe's [points] takes)
 MAX_CSV_BYTES = 200_000_000
 #: names of the identity column of an FE export: kept as a coordinate, never compared

@@ -422,7 +422,13 @@ def _points_table(data: dict, declared: dict, params: dict, scen: Scenario, base
                                 f"sample; it also has {', '.join(map(show, others))}: put every column in one of them")
                 return {}, {}
             if key == "file":
-                return read_points_file(table["file"], base, problems)
+                columns, source = read_points_file(table["file"], base, problems)
+                if columns:         # the header forms and units `compare` reads (fe/formats.py)
+                    from .fe.formats import points_columns
+
+                    physical = scen.physical_switch is None or scen.physical_switch in params
+                    columns = points_columns(columns, scen, physical, _said(problems, source))
+                return columns, source
             spec = _sample_spec(table["sample"], declared, params, scen, problems)
             return {}, ({"sample": spec} if spec else {})
     return dict(table), {}

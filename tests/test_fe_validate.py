@@ -272,3 +272,24 @@ def test_units_pint_converts_and_table_fallback():
     assert factor("in", "m", "c") == pytest.approx(0.0254, rel=1e-15)
     with pytest.raises(UnitProblem, match="column 'c': unit 'mm' is not stress"):
         factor("mm", "Pa", "c")
+
+
+def test_points_file_reads_the_csv_compare_reads(tmp_path):
+    """The example's comparison CSV (node ids, x[mm], values) as a [points] file: the coordinates in
+    metres, the node and value columns left out; an unknown column is still refused by name."""
+    from stressfields.recipe import RecipeError, load
+
+    header, table = example_table()
+    recipe = RECIPE.read_text() + f'\n[points]\nfile = "{NODES}"\n'
+    (tmp_path / "r.toml").write_text(recipe)
+    r = load(tmp_path / "r.toml")
+    np.testing.assert_array_equal(r.values["x"], table[:, 1] * 1e-3)
+    np.testing.assert_array_equal(r.values["z"], table[:, 3] * 1e-3)
+    (tmp_path / "bad.csv").write_text("Node Label,X(mm),Y(mm),Z(mm),muu\n1,0.01,0.0,0.0,0.2\n")
+    (tmp_path / "b.toml").write_text(RECIPE.read_text() + '\n[points]\nfile = "bad.csv"\n')
+    with pytest.raises(RecipeError, match="unknown parameter 'muu'"):
+        load(tmp_path / "b.toml")
+    (tmp_path / "u.csv").write_text("x[MPa],y,z\n0.01,0.0,0.0\n")
+    (tmp_path / "u.toml").write_text(RECIPE.read_text() + '\n[points]\nfile = "u.csv"\n')
+    with pytest.raises(RecipeError, match="column 'x.MPa.': unit 'MPa' is not length"):
+        load(tmp_path / "u.toml")

@@ -79,9 +79,12 @@ def canonical(header: str) -> tuple[str, str | None]:
     match = _HEADER.match(header)
     raw = match.group("name") if match else header
     unit = match.group("unit") if match else None
-    name = re.sub(r"[\s\-.:/]+", "_", raw.strip()).lower().strip("_")
+    written = re.sub(r"[\s\-.:/]+", "_", raw.strip()).strip("_")
+    name = written.lower()
     if name in ALIASES and ALIASES[name]:
         return ALIASES[name], unit or None
+    if name in ("x", "y", "z", "r"):
+        return name, unit or None
     comp = _COMPONENT.match(name)
     if comp and (comp.group(1) == "u") == (comp.group(3) is None):
         i = _INDEX[comp.group(2)]
@@ -95,7 +98,42 @@ def canonical(header: str) -> tuple[str, str | None]:
         if i in order and j in order and order.index(i) > order.index(j):
             i, j = j, i
         return f"sigma_{i}{j}", unit or None
-    return name, unit or None
+    return written, unit or None            # as written: a parameter such as R or E keeps its case
+
+
+#: columns of an FE export that are not parameters: a [points] file may carry them, unused
+NOT_PARAMETERS = ("node", "weight", "body")
+
+
+def points_columns(columns: dict, scen, physical: bool, problems) -> dict:
+    """A [points] file's columns by the reader `compare` uses: FE header forms (``X[mm]``, ``Node Label``),
+    units converted to the recipe's (``x[mm]`` in physical mode; "1" in normalised mode), and the
+    columns of a comparison file that are not parameters (node ids, weights, the scenario's value
+    columns) left out. A name that is neither stays, for the recipe checker to refuse."""
+    from .units import UnitProblem, factor
+
+    declared = {p.name: p for p in scen.parameters}
+    fields = {v.name for v in scen.variables}
+    out, seen = {}, {}
+    for header, values in columns.items():
+        name, unit = canonical(str(header))
+        if name in NOT_PARAMETERS or (name in fields and name not in declared):
+            continue
+        if name in seen:
+            problems.append(f"columns {seen[name]!r} and {header!r} both name {name!r}")
+            continue
+        seen[name] = header
+        if name in declared and unit is not None:
+            try:
+                values = np.asarray(values, dtype=np.float64) * factor(unit, declared[name].units_in(physical),
+                                                                        str(header))
+            except UnitProblem as exc:
+                problems.append(str(exc))
+                continue
+        elif unit is not None:
+            name = header                   # an unknown column: the checker names it as written
+        out[name] = values
+    return out
 
 
 # --- the entry point ----------------------------------------------------------------------------

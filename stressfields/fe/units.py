@@ -8,6 +8,9 @@ from __future__ import annotations
 import functools
 import re
 
+#: unit -> (the SI unit it converts to, exact factor): the conversions made without pint (and first)
+UNITS = {"Pa": ("Pa", 1.0), "kPa": ("Pa", 1e3), "MPa": ("Pa", 1e6), "GPa": ("Pa", 1e9),
+         "m": ("m", 1.0), "mm": ("m", 1e-3), "um": ("m", 1e-6), "N": ("N", 1.0), "1": ("1", 1.0)}
 #: the declared units of the scenarios (SI, or "1") -> the dimension a message names
 DIMENSIONS = {"Pa": "stress (e.g. Pa, MPa, N/mm^2, psi)", "m": "length (e.g. m, mm, um, in)",
               "N": "force (e.g. N, kN, lbf)", "Pa/m": "stress per length (e.g. Pa/m, MPa/mm)",
@@ -47,8 +50,6 @@ def factor(unit: str | None, target: str, label: str) -> float:
 
 @functools.lru_cache(maxsize=256)
 def _factor(unit: str, target: str, label: str, given: str) -> float:
-    from ..comparison import UNITS
-
     expected = DIMENSIONS.get(target, repr(target))
     known = UNITS.get(unit)
     if known is not None and known[0] == target:
