@@ -293,3 +293,71 @@ def test_points_file_reads_the_csv_compare_reads(tmp_path):
     (tmp_path / "u.toml").write_text(RECIPE.read_text() + '\n[points]\nfile = "u.csv"\n')
     with pytest.raises(RecipeError, match="column 'x.MPa.': unit 'MPa' is not length"):
         load(tmp_path / "u.toml")
+
+
+def test_cylindrical_components_of_a_3d_model_are_the_rotated_tensor(tmp_path):
+    """On the y axis (theta = 90 degrees, cos = 0 and sin = 1 exactly) sigma_rr = sigma_yy,
+    sigma_tt = sigma_xx, sigma_rt = -sigma_xy, sigma_rz = sigma_yz, u_r = u_y: the cylindrical file and
+    its Cartesian twin give the same statistics (Hertz-Mindlin: sigma_xy, sigma_yz are not zero)."""
+    rng = np.random.default_rng(3)
+    n = 12
+    y, z = rng.uniform(0.01, 0.2, n), rng.uniform(0.0, 0.1, n)
+    v = rng.normal(-300.0, 200.0, (n, 4))
+    rows = lambda vals: "\n".join(",".join(repr(float(a)) for a in row)       # noqa: E731
+                                  for row in np.column_stack([np.zeros(n), y, z, vals]))
+    (tmp_path / "cyl.csv").write_text("x[mm],y[mm],z[mm],sigma_rr[MPa],sigma_thetatheta[MPa],sigma_rtheta[MPa],"
+                                      "sigma_rz[MPa]\n" + rows(v) + "\n")
+    cart = np.column_stack([v[:, 0], v[:, 1], -v[:, 2], v[:, 3]])
+    (tmp_path / "cart.csv").write_text("x[mm],y[mm],z[mm],sigma_yy[MPa],sigma_xx[MPa],sigma_xy[MPa],sigma_yz[MPa]\n"
+                                       + rows(cart) + "\n")
+    run(tmp_path, "cyl", RECIPE, tmp_path / "cyl.csv")
+    run(tmp_path, "cart", RECIPE, tmp_path / "cart.csv")
+    a, b = report(tmp_path / "cyl")["tables"][0], report(tmp_path / "cart")["tables"][0]
+    for cyl, car in (("sigma_rr", "sigma_yy"), ("sigma_tt", "sigma_xx"), ("sigma_rz", "sigma_yz")):
+        for key in STATS:
+            assert a["variables"][cyl][key] == pytest.approx(b["variables"][car][key], rel=1e-12), (cyl, key)
+    assert a["variables"]["sigma_rt"]["rms_difference_over_scale"] == pytest.approx(
+        b["variables"]["sigma_xy"]["rms_difference_over_scale"], rel=1e-12)
+
+
+def test_exodus_element_variables_at_centroids(tmp_path):
+    """An element variable is compared at its element's centroid: one hexahedron's corners around a
+    node of the example; its value there gives that node's statistics."""
+    import netCDF4
+
+    header, table = example_table()
+    row = table[137]                                        # the planted error's node (make_nodes.py)
+    centre = row[1:4] * np.array([1, 1, -1])                # z up
+    corners = centre + 0.001 * np.array([[sx, sy, sz] for sz in (-1, 1) for sy in (-1, 1) for sx in (-1, 1)])
+    path = _exodus(tmp_path / "el.e", corners, ["dummy"], [np.zeros((8, 1))])
+    with netCDF4.Dataset(path, "a") as ds:
+        ds.createDimension("num_el_in_blk1", 1)
+        ds.createDimension("num_nod_per_el1", 8)
+        ds.createDimension("num_elem_var", 1)
+        ds.createVariable("connect1", "i4", ("num_el_in_blk1", "num_nod_per_el1"))[:] = np.arange(1, 9)[None, :]
+        names = ds.createVariable("name_elem_var", "S1", ("num_elem_var", "len_string"))
+        names[:] = netCDF4.stringtochar(np.array(["sigma_xx"], dtype="S33"))
+        ds.createVariable("vals_elem_var1eb1", "f8", ("time_step", "num_el_in_blk1"))[:] = [[row[4]]]
+    (tmp_path / "one.csv").write_text("x[mm],y[mm],z[mm],sigma_xx[MPa]\n" + ",".join(
+        repr(float(v)) for v in (*row[1:4], row[4])) + "\n")
+    run(tmp_path, "one", RECIPE, tmp_path / "one.csv")
+    code, out = run(tmp_path, "el", RECIPE, path, "--z-up", "--units", "length=mm,stress=MPa",
+                    "--variables", "sigma_xx")
+    tables = report(out)["tables"]
+    assert "element centroids" in tables[-1]["user_data"]
+    assert tables[-1]["variables"]["sigma_xx"]["max_abs_difference_over_scale"] == pytest.approx(
+        report(tmp_path / "one")["tables"][0]["variables"]["sigma_xx"]["max_abs_difference_over_scale"], rel=1e-9)
+
+
+def test_shipped_convergence_example_reports_what_the_readme_says(tmp_path):
+    folder = EXAMPLE.parent / "fe_convergence"
+    files = [folder / f"L{k}.csv" for k in (1, 2, 3)]
+    assert sum(f.stat().st_size for f in folder.iterdir()) < 1_000_000
+    code, out = run(tmp_path, "conv", folder / "recipe.toml", *files, "--axisymmetric", "--exclude-edge", "0.1",
+                    "--h", "0.025,0.0125,0.00625", "--tolerance", "rms=1e-2")
+    rep = report(out)
+    orders = rep["convergence"]["variables"]["sigma_zz"]["rms"]["orders"]
+    readme = (EXAMPLE.parents[1] / "README.md").read_text()
+    assert f"RMS: {orders[0]:.3f} and {orders[1]:.3f} between successive meshes" in readme
+    assert [t["result"] for t in rep["tables"]] == ["FAIL", "FAIL", "PASS"] and code == 1
+    assert all(t["variables"]["sigma_zz"]["edge_compared_points"] >= 1 for t in rep["tables"])

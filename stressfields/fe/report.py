@@ -112,9 +112,10 @@ def plot_table(ds: xr.Dataset, path: Path) -> None:
 
     plt = require_matplotlib()
     names = ds.attrs["compare_variables"].split()
-    x = ds["x"].values if "x" in ds.coords else np.zeros(ds.sizes["point"])
-    y = ds["y"].values if "y" in ds.coords else np.zeros_like(x)
-    z = ds["z"].values if "z" in ds.coords else np.zeros_like(x)
+    unit, to_user = _user_length(ds)
+    x = ds["x"].values / to_user if "x" in ds.coords else np.zeros(ds.sizes["point"])
+    y = ds["y"].values / to_user if "y" in ds.coords else np.zeros_like(x)
+    z = ds["z"].values / to_user if "z" in ds.coords else np.zeros_like(x)
     horizontal = np.hypot(x, y) if np.ptp(y) > 0 else x
     cols = min(len(names), 2)
     rows = -(-len(names) // cols)
@@ -127,11 +128,11 @@ def plot_table(ds: xr.Dataset, path: Path) -> None:
         big = np.isfinite(ratio) & (ratio >= 0.5 * np.nanmax(ratio)) if np.isfinite(ratio).any() else None
         if big is not None and big.any():
             h0, h1, z0, z1 = horizontal[big].min(), horizontal[big].max(), z[big].min(), z[big].max()
-            pad = max(h1 - h0, z1 - z0, 0.05 * max(np.ptp(horizontal), np.ptp(z), 1e-300))
+            # the largest differences and their surroundings: at least 15 % of the model's extent
+            pad = max(0.5 * (h1 - h0), 0.5 * (z1 - z0), 0.15 * max(np.ptp(horizontal), np.ptp(z)), 1e-300)
             ax.set_xlim(h0 - pad, h1 + pad)
             ax.set_ylim(z0 - pad, z1 + pad)
         ax.invert_yaxis()       # depth downward, as the body lies
-        unit = ds["x"].attrs.get("units", "1") if "x" in ds.coords else "1"
         ax.set(xlabel=("r" if np.ptp(y) > 0 else "x") + ("" if unit == "1" else f" [{unit}]"),
                ylabel="depth z" + ("" if unit == "1" else f" [{unit}]"))
         worst = ds.attrs.get(f"compare_{name}_max_abs_difference_over_scale", math.nan)
@@ -140,6 +141,23 @@ def plot_table(ds: xr.Dataset, path: Path) -> None:
         ax.set_visible(False)
     fig.tight_layout()
     save_figure(fig, plt, path)
+
+
+def _user_length(ds: xr.Dataset) -> tuple[str, float]:
+    """The unit the user gave the coordinates in, and its factor to the recipe's."""
+    from .units import UnitProblem, factor
+
+    for c in ("x", "z", "y"):
+        if c in ds.coords:
+            target = ds[c].attrs.get("units", "1")
+            given = ds[c].attrs.get("user_units")
+            if given:
+                try:
+                    return given, factor(given, target, c)
+                except UnitProblem:
+                    break
+            return target, 1.0
+    return "1", 1.0
 
 
 def plot_convergence(conv: dict, path: Path) -> None:

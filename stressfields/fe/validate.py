@@ -90,6 +90,9 @@ def compare_files(recipe, files, options: Options) -> list[xr.Dataset]:
         except FrameProblem as exc:
             raise CompareError(f"{table.label}: {exc}") from None
     # every table is checked before the first reference is computed
+    if options.variables and len(frames) > 1:     # tables that give none of them (nodes or elements) left out
+        kept = [(t, f) for t, f in frames if {c.name for c in f.values} & set(options.variables)]
+        frames = kept or frames[:1]
     plans = [_plan(base, table, frame, options) for table, frame in frames]
     return [_compare_one(base, data, plan, options) for plan in plans]
 
@@ -110,6 +113,8 @@ def _plan(base, table: Table, frame: Frame, options: Options) -> _Plan:
     fields = {v.name: v for v in scen.variables_in(physical) if v.dtype.startswith("float") and not v.flag_values}
     values = []
     for c in frame.values:
+        if options.variables and c.name not in options.variables:
+            continue            # a column not asked for is not checked (an FE file holds many)
         cart = CYLINDRICAL.get(c.name, c.name) if frame.cylindrical else c.name
         if cart in fields:
             values.append(c)
