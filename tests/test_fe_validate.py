@@ -361,3 +361,63 @@ def test_shipped_convergence_example_reports_what_the_readme_says(tmp_path):
     assert f"RMS: {orders[0]:.3f} and {orders[1]:.3f} between successive meshes" in readme
     assert [t["result"] for t in rep["tables"]] == ["FAIL", "FAIL", "PASS"] and code == 1
     assert all(t["variables"]["sigma_zz"]["edge_compared_points"] >= 1 for t in rep["tables"])
+
+
+def hertz_axis(z, nu=0.3):
+    """Hertz on the axis r = 0 below the surface, in p_m (p0 = 1.5 p_m; Johnson, Contact Mechanics,
+    (3.45)-(3.46) with a = 1): sigma_zz = -p0 / (1 + z^2), sigma_rr = sigma_tt =
+    -p0 [(1 + nu)(1 - z arctan(1/z)) - 1 / (2 (1 + z^2))]; no shear on the axis."""
+    p0 = 1.5
+    szz = -p0 / (1 + z * z)
+    srr = -p0 * ((1 + nu) * (1 - z * np.arctan(1 / z)) - 0.5 / (1 + z * z))
+    return srr, szz
+
+
+def test_weighted_and_energy_norms_are_the_integrals(tmp_path):
+    (tmp_path / "normal.toml").write_text('scenario = "parabolic"\n[parameters]\nnu = 0.3\n')
+    rng = np.random.default_rng(5)
+    z = np.linspace(0.1, 2.0, 12)
+    w = rng.uniform(0.5, 2.0, z.size)                           # quadrature weights
+    srr, szz = hertz_axis(z)
+    zero = np.zeros_like(z)
+    ref = {"sigma_xx": srr, "sigma_yy": srr, "sigma_zz": szz, "sigma_xy": zero, "sigma_xz": zero, "sigma_yz": zero}
+    delta = {k: rng.normal(0.0, 1e-3, z.size) for k in ref}
+    names = list(ref)
+    table = np.column_stack([zero, zero, z, w] + [ref[k] + delta[k] for k in names])
+    (tmp_path / "axis.csv").write_text("x,y,z,weight," + ",".join(names) + "\n" + "\n".join(
+        ",".join(repr(float(v)) for v in row) for row in table) + "\n")
+    code, out = run(tmp_path, "w", tmp_path / "normal.toml", tmp_path / "axis.csv",
+                    "--tolerance", "energy=1e-2,max=1e-2")
+    t = report(out)["tables"][0]
+    d, r = delta["sigma_zz"], szz
+    assert t["variables"]["sigma_zz"]["weighted_relative_l2"] == pytest.approx(
+        math.sqrt(np.sum(w * d * d) / np.sum(w * r * r)), rel=1e-6)
+
+    def density(s, nu=0.3):
+        tr = s["sigma_xx"] + s["sigma_yy"] + s["sigma_zz"]
+        sq = sum(s[k] ** 2 for k in names[:3]) + 2 * sum(s[k] ** 2 for k in names[3:])
+        return (1 + nu) * sq - nu * tr * tr
+
+    assert t["energy_relative_error"] == pytest.approx(math.sqrt(np.sum(w * density(delta)) / np.sum(w * density(ref))),
+                                                       rel=1e-6)
+    assert code == 0 and t["result"] == "PASS"
+    assert t["variables"]["sigma_xy"]["relative_l2"] == "inf"         # a zero reference: no relative norm
+
+
+def test_scale_p0_and_rigid_offset(tmp_path):
+    """Hertz at the surface inside the contact (a = 1, normalised): p / p0 = sqrt(1 - r^2) and
+    u_z / delta = 1 - r^2 / 2 (the rigid approach minus the profile r^2 / (2R), a^2 = R delta)."""
+    (tmp_path / "normal.toml").write_text('scenario = "parabolic"\n[parameters]\nnu = 0.3\n')
+    r = np.linspace(0.0, 0.9, 10)
+    rows = np.column_stack([r, np.zeros_like(r), -np.sqrt(1 - r * r), 1 - r * r / 2 + 0.011])
+    (tmp_path / "s.csv").write_text("r,z,sigma_zz,u_z\n" + "\n".join(",".join(repr(float(v)) for v in row)
+                                                                     for row in rows) + "\n")
+    code, out = run(tmp_path, "p0", tmp_path / "normal.toml", tmp_path / "s.csv", "--axisymmetric", "--scale", "p0",
+                    "--remove-rigid-offset", "--tolerance", "1e-8")
+    v = report(out)["tables"][0]["variables"]
+    assert code == 0 and v["u_z"]["rigid_offset_removed"] == pytest.approx(0.011, abs=1e-9)
+    code, out = run(tmp_path, "pm", tmp_path / "normal.toml", tmp_path / "s.csv", "--axisymmetric", "--scale", "p_m",
+                    "--tolerance", "1e-8")
+    v = report(out)["tables"][0]["variables"]
+    assert code == 1 and v["sigma_zz"]["max_abs_difference_over_scale"] == pytest.approx(0.5, rel=1e-6)  # 1.5 - 1
+    assert v["u_z"]["max_abs_difference_over_scale"] == pytest.approx(0.011, rel=1e-6)
