@@ -140,7 +140,7 @@ def _surface_csv(path: Path, r: np.ndarray, sigma_zz: np.ndarray) -> Path:
 
 
 def hertz_surface_szz(r):
-    """Hertz's surface pressure p = (3/2) p_m sqrt(1 - r^2/a^2) (Johnson, Contact Mechanics, (4.16)):
+    """Hertz's surface pressure p = p0 sqrt(1 - r^2/a^2) with p0 = (3/2) p_m (the classical closed form):
     sigma_zz / p_m = -p / p_m inside the contact, 0 outside (r, a = 1: normalised)."""
     return -1.5 * np.sqrt(np.clip(1.0 - r * r, 0.0, None))
 
@@ -364,9 +364,10 @@ def test_shipped_convergence_example_reports_what_the_readme_says(tmp_path):
 
 
 def hertz_axis(z, nu=0.3):
-    """Hertz on the axis r = 0 below the surface, in p_m (p0 = 1.5 p_m; Johnson, Contact Mechanics,
-    (3.45)-(3.46) with a = 1): sigma_zz = -p0 / (1 + z^2), sigma_rr = sigma_tt =
-    -p0 [(1 + nu)(1 - z arctan(1/z)) - 1 / (2 (1 + z^2))]; no shear on the axis."""
+    """Hertz on the axis r = 0 below the surface (the classical closed form, written out in the axis
+    limits of docs/theory/interior.md in units of p0), here in p_m (p0 = 1.5 p_m, a = 1):
+    sigma_zz = -p0 / (1 + z^2), sigma_rr = sigma_tt = -p0 [(1 + nu)(1 - z arctan(1/z)) - 1 / (2 (1 + z^2))];
+    no shear on the axis."""
     p0 = 1.5
     szz = -p0 / (1 + z * z)
     srr = -p0 * ((1 + nu) * (1 - z * np.arctan(1 / z)) - 0.5 / (1 + z * z))
