@@ -1,9 +1,11 @@
-"""Write a synthetic three-mesh convergence study of Hertz: an axisymmetric (r, z) model in mm/MPa
-with z up and cylindrical names, as an FE code would export it, on meshes of h = a/4, a/8, a/16.
+"""Write a synthetic three-mesh convergence study of Hertz: the surface nodes of an axisymmetric
+(r, z) model in mm and N/mm^2 as an FE code exports them (an Abaqus-style CSV, and a VTU), on meshes
+of h = a/4, a/8, a/16.
 
-The "FE" values are the exact Hertz surface pressure p0 sqrt(1 - r^2/a^2) along the surface, plus a smooth synthetic error C (h/a)^1.5 p_m sin(3 r/a) (a
-discretisation error of order 1.5), and at the node on the contact edge r = a an error that falls as
-(h/a)^0.5, as a real mesh shows there. Run from this folder:
+The "FE" values are the exact Hertz surface pressure p0 sqrt(1 - r^2/a^2) plus a smooth synthetic
+error 0.5 (h/a)^1.5 p_m sin(3 r/a) (a discretisation error of order 1.5), and at the node on the
+contact edge r = a an error 0.3 (h/a)^0.5 p_m, which falls as a real mesh's does there. Run from
+this folder:
 
     python make_meshes.py          # writes L1.csv, L2.csv, L3.csv (and L*.vtu with meshio installed)
 """
