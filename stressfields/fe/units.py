@@ -85,7 +85,10 @@ def parse_unit_option(text: str | None) -> dict[str, str]:
         if not sep or key not in UNIT_KEYS or not value:
             raise UnitProblem(f"--units {item.strip()!r}: give key=unit with a key among "
                               f"{', '.join(UNIT_KEYS)}, e.g. length=mm,stress=MPa")
-        factor(value, UNIT_KEYS[key], f"--units {key}")      # checked now: refused before any work
+        try:                    # checked now: refused before any work
+            factor(value, UNIT_KEYS[key], key)
+        except UnitProblem as exc:
+            raise UnitProblem(f"--units {key}={value}: " + str(exc).split(": ", 1)[1]) from None
         out[key] = value
     return out
 
