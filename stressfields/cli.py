@@ -192,8 +192,9 @@ def _parser() -> argparse.ArgumentParser:
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
     sch.set_defaults(func=_schema)
 
-    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, atomically; or "
-                         "with --layout, a file to an ML-ready directory split by its recipe's [splits]")
+    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, or a dataset to "
+                         "VTU for ParaView (-o OUT.vtu; pip install 'stressfields[fe]'), atomically; or with --layout, "
+                         "a file to an ML-ready directory split by its recipe's [splits]")
     exp.add_argument("store", type=Path)
     exp.add_argument("-o", "--output", type=Path, required=True)
     exp.add_argument("--overwrite", action="store_true")
@@ -209,21 +210,44 @@ def _parser() -> argparse.ArgumentParser:
     for command in (lst, desc, val, hsh):
         command.add_argument("--json", action="store_true", help="one JSON document on stdout")
 
-    cmp = sub.add_parser("compare", help="compare your nodal values (e.g. an FE model's; CSV or NetCDF) with "
-                         "the reference at the same points: exit 0 within --tolerance, 1 beyond it, 2 bad input")
+    cmp = sub.add_parser("compare", help="compare your nodal values (an FE model's: CSV, NetCDF, Exodus II, VTU/VTK, "
+                         "XDMF, MED, Gmsh) with the reference at the same points: exit 0 within --tolerance, 1 "
+                         "beyond it, 2 bad input")
     cmp.add_argument("recipe", type=Path, help="recipe TOML file (its [points] and the coordinates the nodes give "
                      "are replaced by the nodes)")
-    cmp.add_argument("user_data", type=Path, help="CSV with a header such as x[mm],y[mm],z[mm],sigma_xx[MPa] "
-                     "(units: " + ", ".join(COMPARE_UNITS) + "; none: the scenario's unit), or NetCDF along one "
-                     "dimension with units attributes")
+    cmp.add_argument("user_data", type=Path, nargs="+", help="file(s) of nodes: CSV with a header such as "
+                     "x[mm],y[mm],z[mm],sigma_xx[MPa] (also X(mm), Node Label, S-S11; units: any pint converts, "
+                     "e.g. " + ", ".join(COMPARE_UNITS[:4]) + ", N/mm^2, psi; none: the scenario's unit), NetCDF "
+                     "with units attributes, Exodus II, or VTU/VTK/XDMF/MED/Gmsh (pip install 'stressfields[fe]'); "
+                     "several files: a mesh sequence, coarse to fine (convergence table)")
     cmp.add_argument("-o", "--output", dest="report_dir", type=Path, required=True,
-                     help="report folder (comparison.nc, report.md, comparison.png), published whole when "
-                     "complete: a new or empty folder, or a previous report with --overwrite")
-    cmp.add_argument("--tolerance", type=float, default=None,
-                     help="largest max |difference| / scale (p_m for stresses) a variable may have (default: "
-                          "report only, exit 0)")
+                     help="report folder (comparison.nc, report.md, report.json, comparison.png), published "
+                     "whole when complete: a new or empty folder, or a previous report with --overwrite")
+    cmp.add_argument("--tolerance", default=None,
+                     help="largest max |difference| / scale (p_m for stresses) a variable may have, or limits of "
+                          "any statistic: max, rms, p50, p95, p99, l2, wl2, wrms, energy (e.g. rms=1e-3,max=0.05); "
+                          "default: report only, exit 0")
     cmp.add_argument("--variables", nargs="+", default=None, help="compare only these value columns")
     cmp.add_argument("--overwrite", action="store_true", help="replace the report files")
+    cmp.add_argument("--no-plot", action="store_true", help="no PNG (faster)")
+    cmp.add_argument("--step", type=int, default=None, help="Exodus II: this time step only (from 1; default: "
+                     "every step, each compared)")
+    cmp.add_argument("--units", default=None, help="units of a format that carries none (VTU, Exodus II, ...): "
+                     "length=mm,stress=MPa,force=N (displacement=um if it differs from length)")
+    cmp.add_argument("--z-up", action="store_true", help="the model's body lies at z <= 0: z, sigma_xz, sigma_yz, "
+                     "u_z (and sigma_rz) change sign")
+    cmp.add_argument("--axisymmetric", action="store_true", help="a 2-D (r, z) model: a 2-D mesh's second "
+                     "coordinate is z; columns r, sigma_rr, sigma_tt (sigma_thetatheta), sigma_rz, u_r")
+    cmp.add_argument("--body", type=int, choices=(1, 2), default=1, help="2: the nodes belong to the second of two "
+                     "identical bodies (the mirror image, z -> -z, tangential traction reversed); a column 'body' "
+                     "gives it per node")
+    cmp.add_argument("--exclude-edge", type=float, default=None, metavar="W", help="report the nodes within W a of "
+                     "the contact edge, the stick edge (or the cone tip) apart, outside the verdict")
+    cmp.add_argument("--remove-rigid-offset", action="store_true", help="subtract the mean displacement difference "
+                     "(a finite model's rigid offset) from u_x, u_y, u_z before comparing")
+    cmp.add_argument("--scale", choices=("p0", "p_m"), default=None, help="the file's stresses are divided by p0 "
+                     "(the pressure at the centre) or by p_m")
+    cmp.add_argument("--h", default=None, help="mesh sizes of a mesh sequence, one per file (default: N^(-1/d))")
     cmp.set_defaults(func=_compare)
 
     ste = sub.add_parser("suite", help="the published reference suite (suite/ of a clone): build it into a "
@@ -251,26 +275,12 @@ def _allow_read_option(parser) -> None:
 
 
 def _compare(args) -> int:
-    """The comparison's report folder, published whole (`comparison.write_report`); the folder is
-    checked before anything is computed."""
-    from .comparison import check_report_folder, compare, summary, write_report
+    """The comparison's report folder (fe/command.py), published whole (`comparison.publish_report`);
+    the folder is checked before anything is computed."""
+    from .fe.command import run
 
     _no_stdout(args.report_dir)
-    out = args.report_dir
-    check_report_folder(out, overwrite=args.overwrite)
-    plotting = _has_matplotlib()
-    ds = compare(args.recipe, args.user_data, tolerance=args.tolerance, variables=args.variables)
-    if not plotting:
-        print("note: no comparison.png: matplotlib is not installed (pip install 'stressfields[plot]')",
-              file=sys.stderr)
-    write_report(ds, out, str(args.recipe), overwrite=args.overwrite, plot=plotting)
-    for name, s in summary(ds).items():
-        node = "".join(f"{k[6:]} {v}, " for k, v in s.items() if k in ("worst_node", "worst_node_id", "worst_id"))
-        print(f"{name:12s} max |diff|/scale {s['max_abs_difference_over_scale']:.3e} at point {s['worst_point']} "
-              f"({node}{s['worst_coordinates']}); RMS/scale {s['rms_difference_over_scale']:.3e}; relative L2 "
-              f"{s['relative_l2']:.3e}; {s['result']}")
-    print(f"{ds.attrs['compare_result']}; report in {out}")
-    return 1 if ds.attrs["compare_result"] == "FAIL" else 0
+    return run(args)
 
 
 def _no_stdout(output: Path | None) -> None:
@@ -296,6 +306,11 @@ def _export(args) -> int:
         from .mlexport import export_layout
 
         export_layout(args.store, args.output, args.layout, overwrite=args.overwrite)
+        return 0
+    if args.output.suffix.lower() == ".vtu":      # for ParaView: fe/vtu.py (the optional fe extra)
+        from .fe.vtu import export_vtu
+
+        export_vtu(args.store, args.output, overwrite=args.overwrite)
         return 0
     export(args.store, args.output, overwrite=args.overwrite)
     return 0

@@ -32,6 +32,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import shutil
 import stat
 import tomllib
@@ -536,7 +537,9 @@ def report_markdown(ds: xr.Dataset, recipe_label: str, png_note: str) -> str:
 
 
 #: what a report folder holds (`write_report`); a folder holding anything else is never replaced
-REPORT_FILES = ("comparison.nc", "comparison.png", "report.md")
+REPORT_FILES = ("comparison.nc", "comparison.png", "report.md", "report.json", "convergence.png")
+#: the per-file tables of a mesh sequence or an Exodus history (fe/report.py names them)
+REPORT_NUMBERED = re.compile(r"^comparison_\d+\.(nc|png)$")
 
 
 def check_report_folder(folder: Path, *, overwrite: bool = False) -> Path:
@@ -553,7 +556,7 @@ def check_report_folder(folder: Path, *, overwrite: bool = False) -> Path:
         if not folder.is_dir():
             raise OutputError(f"{folder} exists and is not a directory; a report is a folder")
         entries = os.listdir(folder)
-        others = [e for e in entries if e not in REPORT_FILES]
+        others = [e for e in entries if e not in REPORT_FILES and not REPORT_NUMBERED.match(e)]
         if others:
             raise OutputError(f"{folder} holds {len(others)} entr{'y' if len(others) == 1 else 'ies'} that "
                               f"{'is' if len(others) == 1 else 'are'} not of a report (e.g. {others[0]!r}); "
@@ -570,30 +573,41 @@ def check_report_folder(folder: Path, *, overwrite: bool = False) -> Path:
 
 def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *, overwrite: bool = False,
                  plot: bool = True) -> Path:
-    """Publish the comparison ``ds`` as the folder ``folder``: comparison.nc, report.md and (with
-    ``plot``) comparison.png, built completely in a temporary folder beside it
-    (``.NAME.HOST-PID.RANDOM.partial``, `netcdf.temporary`) and renamed into place when complete. On
-    any error or interrupt (Ctrl-C, SIGTERM, SIGHUP) the temporary folder is removed and nothing is
-    left; I/O failures (a full disk) are one OutputError. A folder a killed run left is removed by
-    the next (`netcdf.clean_stale`). The folder replaced by ``overwrite`` is moved aside in one rename
-    and removed after, as for a Zarr store."""
-    from .netcdf import _umask, clean_stale, output_error, temporary
+    """Publish the comparison ``ds`` as the folder ``folder`` (`publish_report`): comparison.nc,
+    report.md and (with ``plot``) comparison.png."""
     from .textfiles import write_text
-    from .writers import target_lock, write
+    from .writers import write
+
+    note = ("Quick look: `comparison.png`." if plot else
+            "No comparison.png: matplotlib is not installed (pip install 'stressfields[plot]').")
+
+    def fill(tmp: Path) -> None:
+        write(ds, tmp / "comparison.nc")
+        if plot:
+            plot_comparison(ds, tmp / "comparison.png")
+        write_text(tmp / "report.md", report_markdown(ds, recipe_label, note))
+
+    return publish_report(folder, fill, overwrite=overwrite)
+
+
+def publish_report(folder: str | os.PathLike, fill, *, overwrite: bool = False) -> Path:
+    """Publish a report folder whole: ``fill(tmp)`` writes its files into a temporary folder beside
+    ``folder`` (``.NAME.HOST-PID.RANDOM.partial``, `netcdf.temporary`), which is renamed into place
+    when complete. On any error or interrupt (Ctrl-C, SIGTERM, SIGHUP) the temporary folder is removed
+    and nothing is left; I/O failures (a full disk) are one OutputError. A folder a killed run left is
+    removed by the next (`netcdf.clean_stale`). The folder replaced by ``overwrite`` is moved aside in
+    one rename and removed after, as for a Zarr store."""
+    from .netcdf import _umask, clean_stale, output_error, temporary
+    from .writers import target_lock
     from .zarrstore import publish_folder
 
     folder = check_report_folder(Path(folder), overwrite=overwrite)
     parent = folder.parent if str(folder.parent) else Path(".")
-    note = ("Quick look: `comparison.png`." if plot else
-            "No comparison.png: matplotlib is not installed (pip install 'stressfields[plot]').")
     with target_lock(folder):
         clean_stale(folder)
         tmp = temporary(folder, ".partial")
         try:
-            write(ds, tmp / "comparison.nc")
-            if plot:
-                plot_comparison(ds, tmp / "comparison.png")
-            write_text(tmp / "report.md", report_markdown(ds, recipe_label, note))
+            fill(tmp)
             os.chmod(tmp, 0o777 & ~_umask())         # mkdtemp makes 0700; publish like any new folder
             fd = os.open(tmp, os.O_RDONLY)
             try:
@@ -607,7 +621,7 @@ def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *
             shutil.rmtree(tmp, ignore_errors=True)
             error = output_error(exc, folder, parent)
             if error is None and isinstance(exc, OutputError):     # the writer's: named after the folder
-                text = str(exc).replace(f"{tmp}/comparison.nc", str(folder))
+                text = re.sub(re.escape(str(tmp)) + r"/comparison(_\d+)?\.nc", str(folder), str(exc))
                 error = OutputError(text.replace(str(tmp), str(folder)))
             if error is not None:
                 raise error from None
@@ -618,7 +632,7 @@ def write_report(ds: xr.Dataset, folder: str | os.PathLike, recipe_label: str, *
 def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
     """comparison.png: per variable the difference / S along the one coordinate that varies (points
     on a line), or a map over two varying coordinates coloured by |difference| / S; the worst point ringed."""
-    from .plot import plain, require_matplotlib
+    from .plot import plain, require_matplotlib, save_figure
 
     plt = require_matplotlib()
     names = ds.attrs["compare_variables"].split()
@@ -635,11 +649,7 @@ def plot_comparison(ds: xr.Dataset, path: Path) -> Path:
     # the title holds the file names and the recipe's title as given: plain text, never mathtext
     fig.suptitle(plain(ds.attrs["title"]), fontsize=8, wrap=True)
     fig.tight_layout()
-    try:
-        fig.savefig(path, dpi=90)       # into the report's temporary folder (`write_report`)
-    finally:
-        plt.close(fig)
-    return path
+    return save_figure(fig, plt, path)       # into the report's temporary folder (`write_report`)
 
 
 def _panel(ax, ds: xr.Dataset, name: str, varying: list[str]) -> None:

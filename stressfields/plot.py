@@ -70,6 +70,15 @@ def plain(text: str) -> str:
     return text.replace("$", "\\$")
 
 
+def save_figure(fig, plt, path: Path) -> Path:
+    """The figure as PNG at ``path``, atomically (`_save`), then closed."""
+    try:
+        _save(fig, path)
+    finally:
+        plt.close(fig)
+    return path
+
+
 def quicklook(path: str | Path, recipe) -> Path:
     plt = require_matplotlib()
     path = Path(path)

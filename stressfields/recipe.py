@@ -460,10 +460,31 @@ def _points_table(data: dict, declared: dict, params: dict, scen: Scenario, base
                 return {}, {}
             if key == "file":
                 columns, source = read_points_file(table["file"], base, problems, allow_read)
+                columns = _parameter_columns(columns, scen)
                 return _converted(columns, declared, physical, _said(problems, source)), source
             spec = _sample_spec(table["sample"], declared, params, scen, problems)
             return {}, ({"sample": spec} if spec else {})
     return dict(table), {}
+
+
+def _parameter_columns(columns, scen) -> list:
+    """The columns of a points file that can be parameters, named as the scenario names them: a file
+    `compare` reads serves as a points file too (FE header forms such as ``X(mm)`` or ``Node Label``
+    read by `fe.formats.canonical`), its node ids, quadrature weights, body and value columns left
+    out. Any other name stays, for the recipe checker to refuse."""
+    from dataclasses import replace
+
+    from .fe.formats import NOT_PARAMETERS, canonical
+
+    declared = {p.name for p in scen.parameters}
+    fields = {v.name for v in scen.variables}
+    kept = []
+    for col in columns:
+        name = col.name if col.name in declared else canonical(col.name)[0]
+        if name in NOT_PARAMETERS or (name in fields and name not in declared):
+            continue
+        kept.append(replace(col, name=name) if name in declared else col)
+    return kept
 
 
 def _converted(columns, declared: dict, physical: bool, problems) -> dict:

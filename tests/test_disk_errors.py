@@ -73,7 +73,7 @@ def test_compare_on_a_full_disk_leaves_nothing_at_any_stage(report_disk, capsys)
     report = report_disk / "report"
     assert cli.main(["compare", *COMPARE, "-o", str(report)]) == 0
     size = {name: os.stat(report / name).st_blocks * 512 for name in os.listdir(report)}
-    assert set(size) == {"comparison.nc", "comparison.png", "report.md"}
+    assert set(size) == {"comparison.nc", "comparison.png", "report.md", "report.json"}
     shutil.rmtree(report)
     nc, png = size["comparison.nc"], size["comparison.png"]
     capsys.readouterr()

@@ -392,7 +392,7 @@ def test_a_closed_pipe_is_one_line(tmp_path):
 # -- compare's report folder ------------------------------------------------------------------------
 
 COMPARE = ("examples/fe_hertz_mindlin/recipe.toml", "examples/fe_hertz_mindlin/nodes.csv")
-REPORT = {"comparison.nc", "comparison.png", "report.md"}
+REPORT = {"comparison.nc", "comparison.png", "report.md", "report.json"}
 # the moment of each kill, counted from the report's temporary folder's appearance; the folder is
 # filled in ~0.5-1.5 s here (comparison.nc, then the PNG, then report.md)
 COMPARE_TRIALS = [(sig, round(random.Random(2126 + i).uniform(0.0, 1.2), 2))

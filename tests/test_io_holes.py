@@ -215,8 +215,13 @@ def test_units_of_every_points_format_are_converted_or_refused(tmp_path, monkeyp
     from_file = load({**PHYSICAL, "points": {"file": _unit_file(tmp_path, kind, "mm").name}}).values
     for k in MM:
         np.testing.assert_array_equal(from_file[k], inline[k], err_msg=k)
-    msg = problems({**PHYSICAL, "points": {"file": _unit_file(tmp_path, kind, "furlong").name}})
-    assert "unit 'furlong' cannot be converted to x's unit" in msg and "allowed: m, mm, um" in msg, msg
+    for unit in ("kPa", "bogus"):    # not a length; not a unit at all
+        msg = problems({**PHYSICAL, "points": {"file": _unit_file(tmp_path, kind, unit).name}})
+        assert f"unit '{unit}' cannot be converted to x's unit" in msg and "allowed: m, mm, um" in msg, msg
+    # a length the table does not list converts through pint, exactly as pint defines it (1 ft = 0.3048 m)
+    feet = load({**PHYSICAL, "points": {"file": _unit_file(tmp_path, kind, "ft").name}}).values
+    for k in MM:
+        np.testing.assert_allclose(feet[k], MM[k] * 0.3048, rtol=1e-15, err_msg=k)
     # normalised mode: coordinates are divided by a; a length unit has no meaning there
     normalised = {"scenario": "parabolic", "parameters": {"nu": 0.3, "mu": 0.3, "ux0": 0.25}}
     assert "unit 'mm' cannot be converted" in problems({**normalised, "points": {"file": f"n_mm.{kind}"}})
