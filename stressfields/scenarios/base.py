@@ -16,7 +16,7 @@ FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
 #: default size limit of ARRAY parameters: the costliest users grow with the square of the size
 #: (a tabulated axisymmetric profile on 100 points: 0.18 s at 100 samples, 4.5 s at 1000, 17.6 s
 #: at 2000; a history on 10 points: 0.17 s at 10 steps, 4.2 s at 100)
-MAX_ARRAY_SIZE = 1000
+MAX_ARRAY_SIZE = 10000
 
 
 class Options(TypedDict):
