@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..physics.names import GRADED_METHODS
-from .base import ARRAY, STR, Parameter, Scenario, Variable, table_step_problem
+from .base import ARRAY, MAX_TABLE_SIZE, STR, Parameter, Scenario, Variable, table_step_problem
 
 REFERENCE = ("M. Hess, V. L. Popov, Method of dimensionality reduction in contact mechanics and friction: "
              "a user's handbook. II. Power-law graded materials, Facta Universitatis, Series Mechanical "
@@ -41,11 +41,12 @@ N = Parameter("n", "exponent of the power-law profile f = A r^n", low=0.0, low_o
 # meaning is said in the text, as in the axisymmetric scenario
 A = Parameter("A", "amplitude of the power-law profile f = A r^n, with r and f in metres (SI units m^(1-n))",
               low=0.0, low_open=True, high=BIG, required=True, when={"profile": ("power_law",)})
-# the graded integral route costs ~ samples^2 (2 points: 0.57 s at 25 samples, 5.6 s at 100, 166 s at 500)
 PROFILE_R = Parameter("profile_r", "radii of the tabulated profile f(r), from 0, strictly increasing", units="m",
-                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)}, max_size=100)
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
+                      max_size=MAX_TABLE_SIZE)
 PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, strictly increasing", units="m",
-                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)}, max_size=100)
+                      kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
+                      max_size=MAX_TABLE_SIZE)
 E0 = Parameter("E0", "Young's modulus E0 at the characteristic depth c0, E(z) = E0 (z/c0)^k", units="Pa",
                low=0.0, low_open=True, high=1e15, required=True)
 C0 = Parameter("c0", "characteristic depth c0 at which E = E0", units="m", default=1.0, low=0.0, low_open=True,
