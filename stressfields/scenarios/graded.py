@@ -113,8 +113,13 @@ def _check_profile(values, method):
         if r.shape != f.shape:
             return [f"profile_r has {r.size} values but profile_f has {f.size}; they must pair up"]
         if r.size < 4 or r[0] != 0.0 or np.any(np.diff(r) <= 0) or np.any(np.diff(f) <= 0):
-            return [f"profile_r = {r.tolist()!r} / profile_f: need at least 4 points, profile_r from 0 and strictly "
-                    "increasing, profile_f strictly increasing"]
+            # the first offending value, not the whole table (up to MAX_TABLE_SIZE numbers)
+            where = ("" if r.size < 4 else f": profile_r[0] = {r[0]!r}" if r[0] != 0.0 else
+                     f": profile_r[{int(np.argmax(np.diff(r) <= 0)) + 1}] does not increase"
+                     if np.any(np.diff(r) <= 0) else
+                     f": profile_f[{int(np.argmax(np.diff(f) <= 0)) + 1}] does not increase")
+            return [f"profile_r / profile_f ({r.size} values){where}; need at least 4 points, profile_r from 0 "
+                    "and strictly increasing, profile_f strictly increasing"]
         step = table_step_problem("profile_r", r)
         if step:
             return [step]
