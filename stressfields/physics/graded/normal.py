@@ -307,7 +307,7 @@ def panel_moments(profile, a, k, rtol):
     """(order, S): the integrals S_i of g'(x) x^(1+k) over the knot panels of
     ``Tabulated.dg_panels`` on [0, a] (the panel rule of the order of rtol, (G55)); their sum is
     (1+k) int_0^a x^k (d - g(x)) dx, F_N / (2 c_N*) times 1+k (G16), and partial sums give F_N(c)
-    (the stick radius, (G48)).  Cached with the panels."""
+    (the stick radius, (G48)), docs/theory/graded.md (G56).  Cached with the panels."""
     order = _table_order(profile, a, k, rtol)[0]
 
     def make():

@@ -339,7 +339,7 @@ def slip_width_quad(a, Fx_over_muFN, profile, *, k, rtol=1e-10):
 
 
 def _tabulated_slip(a, F, profile, k, rtol):
-    """(c/a, 1 - c/a) of a tabulated profile, (G48): 1 - F = M(c)/M(a) with M(c) = int_0^c g'(x) x^(1+k) dx
+    """(c/a, 1 - c/a) of a tabulated profile, (G48) as (G56): 1 - F = M(c)/M(a) with M(c) = int_0^c g'(x) x^(1+k) dx
     (F_N(c) up to a constant, (G32) by parts), on the knot panels of ``Tabulated.dg_panels``.
 
     The panel sums of w g' x^(1+k) on those nodes (``normal.panel_moments``: their order from rtol,
