@@ -622,13 +622,14 @@ class Tabulated(Profile):
         object.__setattr__(self, "_table", table)
         return table
 
-    def _table_sums(self, x, sizes):
+    def _table_sums(self, x, sizes, far=None):
         """g', g'' at x (any shape, 0 < x <= r_max) for the table, and with ``sizes`` also their
-        magnitudes (the rounding bounds of ``_abel``'s -1, -2): by ``_fast_sums`` in O(log knots)
-        per point, or by the exact sums ``_abel`` in O(knots) when _FAST_SUMS is off."""
+        magnitudes (the rounding bounds of ``_abel``'s -1, -2): by ``_fast_sums`` (with the far
+        field ``far`` of ``_far_field``) in O(log knots) per point, or by the exact sums ``_abel`` in
+        O(knots) when _FAST_SUMS is off."""
         if not _FAST_SUMS:
             return self._abel(x, (1, 2, -1, -2) if sizes else (1, 2))
-        outs = self._fast_sums(np.ravel(x), sizes)
+        outs = self._fast_sums(np.ravel(x), sizes, far)
         return [o.reshape(np.shape(x)) for o in outs]
 
     def _far_field(self):
@@ -638,7 +639,8 @@ class Tabulated(Profile):
         polynomials of degree 2 on a piece, so _FAR_ORDER/2 + 1 Gauss nodes per piece make the
         moments exact), passed down to the pieces by ``fastsum.local_fields`` (with the moments'
         magnitudes alongside, for the rounding bounds).  Returns (tree, leaf values, near pairs
-        sorted by target piece, the first pair of every piece)."""
+        sorted by target piece, the first pair of every piece).  Built for the table only (not kept:
+        23 MB at 1e4 samples)."""
         def make():
             from ..graded import fastsum    # the shared block tree (here: not loaded with the family)
 
@@ -660,9 +662,9 @@ class Tabulated(Profile):
             src, dst = src[order], dst[order]
             first = np.searchsorted(dst, np.arange(kn.size))
             return tree, values, src, first
-        return SETUP.get(("far field", _FAR_ORDER, _FAR_SEP) + self._key, make)
+        return make()
 
-    def _fast_sums(self, x, sizes):
+    def _fast_sums(self, x, sizes, far=None):
         """g', g'' (and their magnitudes) at 1-D x in (0, r_max]: the pieces at least _FAR_SEP block
         widths below x by the far field of ``_far_field`` (A109) (its kernel interpolated on blocks:
         below 2e-16 of a block's part by the bound of docs/theory/graded.md (G53); measured 17-34 ulps
@@ -670,7 +672,7 @@ class Tabulated(Profile):
         (A103)."""
         from ..graded import fastsum
 
-        tree, values, src, first = self._far_field()
+        tree, values, src, first = self._far_field() if far is None else far
         kn = self._knots
         piece = np.clip(np.searchsorted(kn, x, side="right") - 1, 0, kn.size - 2)
         outs = fastsum.local_values(tree, values[:4 if sizes else 2], x, piece)
@@ -699,6 +701,7 @@ class Tabulated(Profile):
         """Piecewise polynomials for g' and g'' (see the block comment above ``_TABLE_DEGREE``)."""
         kn = self._knots
         n = _TABLE_DEGREE
+        far = self._far_field() if _FAST_SUMS else None
         z_fit, z_chk, to_monomial = _table_rules(n)
         # piece 0 (no knot below): g' = alpha pi/2 + 2 beta x + 3 pi gamma x^2/4 exactly, a polynomial
         # in w = sqrt(x/h) (z = w), which keeps its relative accuracy as x -> 0
@@ -737,7 +740,7 @@ class Tabulated(Profile):
 
             (xf, zf), (xc, zc) = at(z_fit), at(z_chk)
             vand = np.cos(np.arange(n + 1)[None, None, :] * np.arccos(np.clip(zf, -1.0, 1.0))[:, :, None])
-            fit, chk = self._table_sums(xf, False), self._table_sums(xc, True)
+            fit, chk = self._table_sums(xf, False, far), self._table_sums(xc, True, far)
             vals, sizes = list(zip(fit, chk[:2])), chk[2:]
             if scale is None:
                 s1 = max(np.max(np.abs(vals[0][0])), np.max(np.abs(vals[0][1])), abs(first[0, 0]))
