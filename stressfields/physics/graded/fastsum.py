@@ -117,7 +117,9 @@ class BlockTree:
             for side in (0, 1):
                 c = self.chebyshev_points(level + 1, 2 * b + side)
                 at = self._lagrange(self._local(c, lo[:, None], hi[:, None]))
-                M += np.einsum("bj...,bji->bi...", child[2 * b + side], at)
+                # (batched matmul: several times faster than the equivalent einsum)
+                kid = child[2 * b + side]
+                M += (np.swapaxes(at, 1, 2) @ kid.reshape(kid.shape[:2] + (-1,))).reshape(M.shape)
             levels.append(M)
         return levels[::-1]
 
@@ -177,7 +179,7 @@ def local_fields(tree: BlockTree, moments, kernel, sep: float):
             parent = child >> 1
             x = tree.chebyshev_points(level + 1, child)
             basis = tree._lagrange(tree._local(x, tree.lo[level][parent][:, None], tree.hi[level][parent][:, None]))
-            nxt[:, child] = np.einsum("cij,dcj->dci", basis, values[:, parent])
+            nxt[:, child] = np.moveaxis(basis @ np.moveaxis(values[:, parent], 0, -1), -1, 0)
         values = nxt
         S, B = S[keep], B[keep]
         S = (2 * S[:, None] + np.array([0, 0, 1, 1])).ravel()
