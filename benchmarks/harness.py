@@ -469,6 +469,69 @@ def _tabulated_rates(repeats: int) -> dict:
     return out
 
 
+#: sample counts of the tabulated set-up rows
+SETUP_SAMPLES = (1000, 10000)
+
+
+def _tabulated_setup(repeats: int) -> dict:
+    """The set-up of a tabulated profile as a user pays it: ``sf.generate(recipe).compute()`` of 2
+    surface points (axisymmetric, rtol 1e-10) in a warm process, wall and CPU medians over
+    ``repeats`` new profiles of SETUP_SAMPLES samples (each a different hyperboloid: nothing cached),
+    then the same profile again (its set-up cached); and the graded tangential stick radius of one
+    fx (1000 samples, k = 0.5) per new profile at rtol 1e-4 and 1e-10."""
+    import stressfields as sf
+
+    def recipe(samples, shift):
+        r = np.linspace(0.0, 1.2, samples)
+        f = np.sqrt(r ** 2 + 0.04) - 0.2 + shift * r
+        return {"scenario": "axisymmetric", "parameters": {"profile": "tabulated", "profile_r": r.tolist(),
+                "profile_f": f.tolist(), "nu": 0.3, "y": 0.0, "x": [0.3, 0.7]}, "method": {"rtol": 1e-10}}
+
+    def graded(shift, rtol):
+        r = np.linspace(0.0, 1.5, 1000)
+        f = np.sqrt(r ** 2 + 0.04) - 0.2 + shift * r
+        return {"scenario": "graded_tangential", "parameters": {
+            "profile": "tabulated", "profile_r": r.tolist(), "profile_f": f.tolist(), "E0": 1e9,
+            "contact_radius": 1.0, "fx": 0.5}, "output": {"variables": ["stick_radius"]}, "method": {"rtol": rtol}}
+
+    def timed(make):
+        """Medians of (wall, CPU) of ``make(i)`` computed for i = 1..repeats, and of the same again."""
+        first, again = [], []
+        for i in range(1, repeats + 1):
+            rec = make(i)
+            for out in (first, again):
+                w, c = time.perf_counter(), time.process_time()
+                sf.generate(rec).compute()
+                out.append((time.perf_counter() - w, time.process_time() - c))
+        return [float(np.median([v[j] for v in rows])) for rows in (first, again) for j in (0, 1)]
+
+    sf.generate(recipe(20, 0.0)).compute()            # imports and a first small profile
+    out = {}
+    for samples in SETUP_SAMPLES:
+        vals = timed(lambda i: recipe(samples, 1e-3 * i))
+        for name, v in zip(("s", "cpu_s", "again_s", "again_cpu_s"), vals):
+            out[f"tabulated_setup_{samples}_{name}"] = v
+    for rtol in (1e-4, 1e-10):
+        vals = timed(lambda i: graded(1e-3 * i, rtol))
+        for name, v in zip(("s", "cpu_s", "again_s", "again_cpu_s"), vals):
+            out[f"graded_stick_radius_{rtol:g}_{name}"] = v
+    return out
+
+
+def _setup_lines(tp: dict) -> list[str]:
+    """The tabulated set-up rows of ``_tabulated_setup``."""
+    lines = ["", "Tabulated set-up (a new profile per call, warm process; medians; then the same profile "
+             "again, its set-up cached):", "",
+             "| case | new profile [s] | CPU [s] | same profile again [s] | CPU [s] |", "|---|---|---|---|---|"]
+    rows = [(f"axisymmetric, {n} samples, 2 points, rtol 1e-10", f"tabulated_setup_{n}") for n in SETUP_SAMPLES]
+    rows += [(f"graded stick radius, 1000 samples, one fx, rtol {r:g}", f"graded_stick_radius_{r:g}")
+             for r in (1e-4, 1e-10)]
+    for label, key in rows:
+        lines.append(f"| {label} | {tp[key + '_s']:.3f} | {tp[key + '_cpu_s']:.3f} | {tp[key + '_again_s']:.3f} | "
+                     f"{tp[key + '_again_cpu_s']:.3f} |")
+    return lines + [""]
+
+
 def _sibling(name: str):
     """A module of this directory (the harness is loaded by path from `stressfields bench`)."""
     import importlib
@@ -524,6 +587,7 @@ def measure(cfg: Config, peers: bool = False) -> tuple[xr.Dataset, dict]:
         tp.update(_hertz_mindlin_512(cfg.repeats))
         tp.update(batches_rate(cfg.repeats))
         tp.update(_tabulated_rates(cfg.repeats))
+        tp.update(_tabulated_setup(max(3, min(cfg.repeats, 5))))
         tp.update(_whole_process(cfg))
         if solve is not None:
             tp["peer_512_s"] = solve(512)[0] if 512 not in cfg.peer_grids else \
@@ -684,6 +748,7 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
     lines += [f"- Tabulated profiles (1000 samples) at rtol 1e-10: axisymmetric surface stresses "
               f"{tp['tabulated_axisymmetric_points_per_cpu_s']:.3g} points per CPU second."]
     lines += _graded_table(tp)
+    lines += _setup_lines(tp)
     lines += _process_lines(tp)
     if "peer_512_s" in tp:
         peer = tp["peer_512_s"]

@@ -13,9 +13,10 @@ UNITS = {"Pa": ("Pa", 1.0), "kPa": ("Pa", 1e3), "MPa": ("Pa", 1e6), "GPa": ("Pa"
          "m": ("m", 1.0), "mm": ("m", 1e-3), "um": ("m", 1e-6), "N": ("N", 1.0), "1": ("1", 1.0)}
 
 #: a column label: a name and an optional unit in brackets or parentheses, as FE exports write them
-#: (``x[mm]``, ``X(mm)``, ``Node Label``, ``S-S11 (N/mm^2)``; words apart only in an id column's name); a label of any other form is refused by
-#: its position, never quoted (it may be anything a file holds, e.g. the first line of a file that is
-#: not a table of points). The characters allowed make a label safe to quote.
+#: (``x[mm]``, ``X(mm)``, ``S-S11 (N/mm^2)``; words apart only in an id column's name, ``Node Label``).
+#: A label of any other form is refused by its position, never quoted (it may be anything a file
+#: holds, e.g. the first line of a file that is not a table of points): the characters allowed make
+#: a label safe to quote.
 LABEL = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_.-]{0,63}(?: (?:Label|label|ID|Id|id|Number|number))?)\s*"
                    r"(?:\[\s*([A-Za-z0-9_./*^ µ²³-]{1,32}?)\s*\]|\(\s*([A-Za-z0-9_./*^ µ²³-]{1,32}?)\s*\))?\s*$")
 LABEL_RULE = ("a name of letters, digits, _, - and . (at most 64, starting with a letter or _; an id column "

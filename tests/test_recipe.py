@@ -141,9 +141,9 @@ def test_sweep_sizes_are_checked_from_the_specification():
 def test_unsorted_sweeps_and_bad_tables_are_named():
     assert "goes both ways (0.3, 0.0, 0.1)" in problems(recipe(mu=[0.3, 0.0, 0.1]))
     assert "scenario = ['conical'] is unknown" in problems({"scenario": ["conical"]})
-    assert "profile_r has 1,001 values; at most 1,000" in problems(
+    assert "profile_r has 10,001 values; at most 10,000" in problems(
         {"scenario": "axisymmetric", "parameters": {"x": [0.5], "profile": "tabulated",
-                                                    "profile_r": [0.0] * 1001, "profile_f": [0.0] * 1001}})
+                                                    "profile_r": [0.0] * 10001, "profile_f": [0.0] * 10001}})
     assert "plot.x = 'nope'" in problems({**BASE, "plot": {"x": "nope"}})
     assert "plot.hue = ['a']" in problems({**BASE, "plot": {"hue": ["a"]}})
     assert "needs x and y swept" in problems({**BASE, "plot": {"kind": "map"}})

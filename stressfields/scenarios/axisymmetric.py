@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, Mapping
 import numpy as np
 
 from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
-from .base import ARRAY, STR, Parameter, Scenario, Variable, table_step_problem
+from .base import ARRAY, MAX_TABLE_SIZE, STR, Parameter, Scenario, Variable, table_step_problem
 
 if TYPE_CHECKING:
     from ..physics.axisymmetric import Profile
@@ -88,6 +88,7 @@ RADIUS = Parameter("radius", "radius of the flat punch", units="m", low=0.0, low
 PROFILE_R = Parameter("profile_r", "radii of the tabulated profile f(r), from 0 (normalised mode: "
                       "divided by the contact radius a, covering [0, 1])", units="1", units_physical="m",
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
+                      max_size=MAX_TABLE_SIZE,
                       meaning_physical="radii of the tabulated profile f(r), from 0",
                       label="profile radii r / a", label_physical="profile radii r")
 PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-decreasing (normalised "
@@ -95,6 +96,7 @@ PROFILE_F = Parameter("profile_f", "heights f(r) of the tabulated profile, non-d
                       "data whose contact pressure would be tensile anywhere in the contact (p < -1e-9 p_m) "
                       "are refused by the recipe check", units="1", units_physical="m",
                       kind=ARRAY, required=True, sweepable=False, when={"profile": ("tabulated",)},
+                      max_size=MAX_TABLE_SIZE,
                       meaning_physical="heights f(r) of the tabulated profile, non-decreasing, interpolated by a "
                                        "not-a-knot cubic spline; data whose contact pressure would be tensile "
                                        "anywhere in the contact (p < -1e-9 p_m) are refused by the recipe check",

@@ -13,9 +13,7 @@ import numpy as np
 
 #: Values a parameter may take.
 FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
-#: default size limit of ARRAY parameters: the costliest users grow with the square of the size
-#: (a tabulated axisymmetric profile on 100 points: 0.18 s at 100 samples, 4.5 s at 1000, 17.6 s
-#: at 2000; a history on 10 points: 0.17 s at 10 steps, 4.2 s at 100)
+#: default size limit of ARRAY parameters (a history on 10 points: 0.17 s at 10 steps, 4.2 s at 100)
 MAX_ARRAY_SIZE = 1000
 #: the longest label (the files' ``long_name``); the full sentence goes in ``description``
 LABEL_CHARS = 40
@@ -36,6 +34,10 @@ SCALE_SYMBOLS = {
     "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)": "p*",
     "the amplitude Delta_1 of the base wave": "Delta_1",
 }
+#: size limit of a tabulated profile's samples (profile_r, profile_f): its set-up costs
+#: O(samples log samples) and is cached per profile (physics/setup_cache.py); a measured indenter
+#: profile has 1e3-1e4 samples
+MAX_TABLE_SIZE = 10000
 
 
 class Options(TypedDict):

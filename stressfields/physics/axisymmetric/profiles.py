@@ -16,7 +16,9 @@ from typing import ClassVar
 import numpy as np
 from scipy.special import gammaln
 
+from ..quadrature import gauss_legendre
 from ..roots import bisect
+from ..setup_cache import SETUP, content_key
 from .routes import has_closed_form, power_law_family
 
 __all__ = ["Profile", "Cone", "Paraboloid", "PowerLaw", "FlatPunch", "Tabulated",
@@ -280,6 +282,21 @@ _TABLE_DEGREE = 10
 _TABLE_ULPS = 8.0
 _TABLE_LEVELS = 16    # halvings at most (a sub-interval of 2^-16 in w)
 
+# The table's fit and check values come from the sums of (A103) at ~25 points per piece; summing
+# every piece below each point would make the set-up O(knots^2) (1000 samples: 1.8 s).  The pieces
+# far below a point enter instead by the Chebyshev moments of their integrands on a binary tree of
+# pieces (``_far_trees``; the route of docs/theory/graded.md (G52)-(G54) at k = 0) and only the few
+# pieces within _FAR_SEP block widths by their exact sums: O(log knots) per point, O(knots log knots)
+# for the table.
+_FAST_SUMS = True     # False: the exact sums over every piece (the reference of the tests)
+_FAR_SEP = 1.5        # distance of a block of pieces below x, in block widths
+_FAR_ORDER = 22       # Chebyshev points per block: fastsum.chebyshev_order(2e-16, _FAR_SEP), the bound of (G53)
+
+
+def _far_kernel(x, u):
+    """1/sqrt(x^2 - u^2), the kernel of g' and x g'' in u (A103)."""
+    return 1.0 / np.sqrt((x - u) * (x + u))
+
 
 def _table_rules(n):
     """Fit nodes (Chebyshev points of the first kind), check points (the ends and the midpoints
@@ -414,6 +431,7 @@ class Tabulated(Profile):
     _local: np.ndarray = field(init=False, repr=False, compare=False)
     _integrands: tuple = field(init=False, repr=False, compare=False)
     _table: tuple = field(init=False, repr=False, compare=False, default=None)
+    _key: tuple = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
         r = np.asarray(self.r, dtype=float)
@@ -441,6 +459,8 @@ class Tabulated(Profile):
             raise ValueError("tabulated profile: f is constant (a flat punch); use flat_punch()")
         object.__setattr__(self, "r", tuple(r.tolist()))
         object.__setattr__(self, "f", tuple(f.tolist()))
+        # the content the set-up derives from: equal samples share it through the set-up cache
+        object.__setattr__(self, "_key", ("tabulated",) + content_key(r, f))
         from scipy.interpolate import CubicSpline   # here: its import (0.1 s) only for tabulated profiles
 
         spline = CubicSpline(r, f - f[0])
@@ -595,9 +615,93 @@ class Tabulated(Profile):
         return v.reshape(x.shape)
 
     def _build_table(self):
+        """The table of ``_make_table``, built once per content (``setup_cache.SETUP``: shared by
+        every profile object with the same samples, across calls and dask chunks)."""
+        key = ("g' table", _TABLE_DEGREE, _TABLE_ULPS, _TABLE_LEVELS, _FAST_SUMS) + self._key
+        table = SETUP.get(key, self._make_table)
+        object.__setattr__(self, "_table", table)
+        return table
+
+    def _table_sums(self, x, sizes, far=None):
+        """g', g'' at x (any shape, 0 < x <= r_max) for the table, and with ``sizes`` also their
+        magnitudes (the rounding bounds of ``_abel``'s -1, -2): by ``_fast_sums`` (with the far
+        field ``far`` of ``_far_field``) in O(log knots) per point, or by the exact sums ``_abel`` in
+        O(knots) when _FAST_SUMS is off."""
+        if not _FAST_SUMS:
+            return self._abel(x, (1, 2, -1, -2) if sizes else (1, 2))
+        outs = self._fast_sums(np.ravel(x), sizes, far)
+        return [o.reshape(np.shape(x)) for o in outs]
+
+    def _far_field(self):
+        """The far field of the table's sums ((A109)), per spline piece: the block tree (``graded.fastsum``) of
+        phi = (r f')' and psi = r phi' over the pieces, g'(x) = int_0^x phi(u) du / sqrt(x^2 - u^2) and
+        x g''(x) = int_0^x psi(u) du / sqrt(x^2 - u^2) (the integrands of (A103) in u; both
+        polynomials of degree 2 on a piece, so _FAR_ORDER/2 + 1 Gauss nodes per piece make the
+        moments exact), passed down to the pieces by ``fastsum.local_fields`` (with the moments'
+        magnitudes alongside, for the rounding bounds).  Returns (tree, leaf values, near pairs
+        sorted by target piece, the first pair of every piece).  Built for the table only (not kept:
+        23 MB at 1e4 samples)."""
+        def make():
+            from ..graded import fastsum    # the shared block tree (here: not loaded with the family)
+
+            kn = self._knots
+            w, W = gauss_legendre(_FAR_ORDER // 2 + 1)
+            h = np.diff(kn)[:, None]
+            t = h * w                                   # about each piece's lower knot, as (A103)
+            u = (kn[:-1, None] + t).ravel()
+            panel = np.repeat(np.arange(kn.size - 1), w.size)
+            density = []
+            for which in (1, 2):
+                p0, p1, p2 = (c[:, None] for c in self._integrands[which])
+                density.append(((h * W) * (p0 + t * (p1 + t * p2))).ravel())
+            tree = fastsum.BlockTree(kn, u, np.stack(density, axis=-1), panel, _FAR_ORDER)
+            moments = [[m[..., q] for m in tree.M] for q in (0, 1)]
+            moments += [[np.abs(m) for m in M] for M in moments]
+            values, (src, dst) = fastsum.local_fields(tree, moments, _far_kernel, _FAR_SEP)
+            order = np.argsort(dst, kind="stable")
+            src, dst = src[order], dst[order]
+            first = np.searchsorted(dst, np.arange(kn.size))
+            return tree, values, src, first
+        return make()
+
+    def _fast_sums(self, x, sizes, far=None):
+        """g', g'' (and their magnitudes) at 1-D x in (0, r_max]: the pieces at least _FAR_SEP block
+        widths below x by the far field of ``_far_field`` (A109) (its kernel interpolated on blocks:
+        below 2e-16 of a block's part by the bound of docs/theory/graded.md (G53); measured 17-34 ulps
+        of max |g'|, the rounding of the downward pass), the pieces nearer x by their exact sums
+        (A103)."""
+        from ..graded import fastsum
+
+        tree, values, src, first = self._far_field() if far is None else far
+        kn = self._knots
+        piece = np.clip(np.searchsorted(kn, x, side="right") - 1, 0, kn.size - 2)
+        outs = fastsum.local_values(tree, values[:4 if sizes else 2], x, piece)
+        if sizes:
+            # the far field's rounding: a few ulps of its magnitude per level of the downward pass
+            # (Lebesgue constant ~3 of 24 Chebyshev points), ~20 ulps of g' at 1000 samples (measured)
+            for i in (2, 3):
+                outs[i] *= 3.0 * (tree.L + 1)
+        # the near pairs of each point's piece: pieces below x and the piece holding x, summed exactly
+        count = first[piece + 1] - first[piece]
+        pt = np.repeat(np.arange(x.size), count)
+        near = src[np.repeat(first[piece] - np.cumsum(count) + count, count) + np.arange(pt.size)]
+        xp = x[pt]
+        moments = _piece_moments(xp[:, None], np.stack([kn[near], np.minimum(kn[near + 1], xp)], axis=1))
+        for i, which in enumerate((1, 2)):
+            terms = [pk[near] * mk[:, 0] for pk, mk in zip(self._integrands[which], moments)]
+            outs[i] += np.bincount(pt, weights=terms[0] + terms[1] + terms[2], minlength=x.size)
+            if sizes:
+                outs[i + 2] += np.bincount(pt, weights=np.abs(terms[0]) + np.abs(terms[1]) + np.abs(terms[2]),
+                                           minlength=x.size)
+        for i in range(1, len(outs), 2):
+            outs[i] /= x                                    # g'' = (x g'') / x
+        return outs
+
+    def _make_table(self):
         """Piecewise polynomials for g' and g'' (see the block comment above ``_TABLE_DEGREE``)."""
         kn = self._knots
         n = _TABLE_DEGREE
+        far = self._far_field() if _FAST_SUMS else None
         z_fit, z_chk, to_monomial = _table_rules(n)
         # piece 0 (no knot below): g' = alpha pi/2 + 2 beta x + 3 pi gamma x^2/4 exactly, a polynomial
         # in w = sqrt(x/h) (z = w), which keeps its relative accuracy as x -> 0
@@ -636,7 +740,7 @@ class Tabulated(Profile):
 
             (xf, zf), (xc, zc) = at(z_fit), at(z_chk)
             vand = np.cos(np.arange(n + 1)[None, None, :] * np.arccos(np.clip(zf, -1.0, 1.0))[:, :, None])
-            fit, chk = self._abel(xf, (1, 2)), self._abel(xc, (1, 2, -1, -2))
+            fit, chk = self._table_sums(xf, False, far), self._table_sums(xc, True, far)
             vals, sizes = list(zip(fit, chk[:2])), chk[2:]
             if scale is None:
                 s1 = max(np.max(np.abs(vals[0][0])), np.max(np.abs(vals[0][1])), abs(first[0, 0]))
@@ -675,10 +779,8 @@ class Tabulated(Profile):
         order = np.argsort(xb, kind="stable")
         wm, iw = 0.5 * (hi + lo), 2.0 / (hi - lo)
         wm[j == 0], iw[j == 0] = 0.0, 1.0                          # piece 0: z = w
-        table = (xb[order], kn[j][order], 1.0 / h[order], wm[order], iw[order],
-                 np.ascontiguousarray(coef[:, order, :].transpose(0, 2, 1)))
-        object.__setattr__(self, "_table", table)
-        return table
+        return (xb[order], kn[j][order], 1.0 / h[order], wm[order], iw[order],
+                np.ascontiguousarray(coef[:, order, :].transpose(0, 2, 1)))
 
     def depth(self, a):
         return self._sums(self._check_radius(a), 0)

@@ -455,8 +455,19 @@ def min_pressure(profile, a) -> tuple[float, float]:
 
     p = -sigma_zz (A14) by the quadrature route (rtol 1e-10) on 1025 equal steps, 16 points per
     table piece (a tabulated profile's pressure bends at its knots) and points next to the edge,
-    where p ~ g'(a) sqrt(2 (a - r)/a) / pi takes the sign of g'(a) (down to a - r = 1e-12 a)."""
+    where p ~ g'(a) sqrt(2 (a - r)/a) / pi takes the sign of g'(a) (down to a - r = 1e-12 a).
+    A tabulated profile's answer is kept in the set-up cache under its content and a (the recipe
+    check asks it on every call)."""
     a = float(a)
+    key = getattr(profile, "_key", None)
+    if key is not None:
+        from ..setup_cache import SETUP
+
+        return SETUP.get(("min pressure", a) + key, lambda: _min_pressure(profile, a))
+    return _min_pressure(profile, a)
+
+
+def _min_pressure(profile, a: float) -> tuple[float, float]:
     grid = [np.linspace(0.0, a, 1025), a * (1.0 - np.logspace(-12, -3, 10))]
     knots = np.asarray(getattr(profile, "_knots", ()), dtype=float)
     inner = knots[(knots > 0.0) & (knots < a)]

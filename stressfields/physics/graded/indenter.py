@@ -53,8 +53,13 @@ class Indenter:
 
     @classmethod
     def tabulated(cls, r, f) -> Indenter:
-        """Cubic spline through f(r_i), r_0 = 0 (docs/theory/graded.md (G14)); one profile, no sweep."""
-        return cls("tabulated", (), Tabulated(np.asarray(r), np.asarray(f)))
+        """Cubic spline through f(r_i), r_0 = 0 (docs/theory/graded.md (G14)); one profile, no sweep.
+        Equal samples give the same profile object (the set-up cache, keyed by their bytes), so its
+        set-up (block trees, panel values of g') serves every call and dask chunk."""
+        from ..setup_cache import SETUP, content_key
+
+        r, f = np.asarray(r, dtype=float), np.asarray(f, dtype=float)
+        return cls("tabulated", (), SETUP.get(("graded tabulated",) + content_key(r, f), lambda: Tabulated(r, f)))
 
     def power(self) -> tuple[Any, Any]:
         """(n, A_n) of the closed forms f = A_n r^n (paper eqs. 7, 16, 25); arrays for a sweep."""

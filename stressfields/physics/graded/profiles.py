@@ -21,6 +21,7 @@ import numpy as np
 from scipy.special import beta as _B, betainc, betaincc
 
 from .. import quadrature
+from ..setup_cache import SetupCache
 from . import fastsum
 from ._validate import as_array, check_k, check_positive
 from .material import cos_half_pi_k
@@ -131,6 +132,10 @@ class Tabulated:
         ri = r[:-1]
         self._b = np.stack([3 * c3 * ri ** 2 - 2 * c2 * ri + c1, 2 * c2 - 6 * c3 * ri, 3 * c3])
         self._lo, self._hi = r[:-1], r[1:]
+        # the set-up derived from the samples (block tree of h, panel values of g' per (a, k, order),
+        # their trees, the orders per rtol): built once per key, bounded, safe for dask's threads (a
+        # profile object serves every chunk of a call and, through ``Indenter.tabulated``, every call)
+        self._setup = SetupCache(max_entries=32, max_bytes=64 << 20)
         self.evaluations = 0          # nodes at which g' was formed for the panel rules (dg_panels)
         self.block_terms = 0          # dg_fast: kernel values at the Chebyshev points of far blocks
         self.exact_terms = 0          # dg_fast: (node, piece) pairs summed exactly by (G14)
@@ -160,9 +165,7 @@ class Tabulated:
         every row of a sweep reuses one evaluation of g' (:meth:`dg_fast`); ``evaluations`` counts
         the nodes at which g' was formed.
         """
-        key = (float(a), float(k), int(order))
-        cache = self.__dict__.setdefault("_panel_cache", {})
-        if key not in cache:
+        def make():
             w, W = quadrature.gauss_legendre(int(order))
             smooth = w * w * (3.0 - 2.0 * w), 6.0 * w * (1.0 - w) * W
             x, wx = [], []
@@ -174,8 +177,8 @@ class Tabulated:
             self.evaluations += x.size
             # blocks of 8192 nodes bound the (node, block) pair arrays of the tree (~40 MB at p = 24)
             dg = np.concatenate([self.dg_fast(x[i:i + 8192], float(k)) for i in range(0, x.size, 8192)])
-            cache[key] = (x, wx, dg)
-        return cache[key]
+            return x, wx, dg
+        return self._setup.get(("panels", float(a), float(k), int(order)), make)
 
     def _panel_edges(self, a):
         """Edges of the smoothed knot panels below the last knot, and of the cuts of the last panel."""
@@ -202,15 +205,13 @@ class Tabulated:
     def panel_tree(self, a, k, order, p, power=0.0):
         """Block tree (G52) of the density w g'(t) t^power on the panel nodes of :meth:`dg_panels`,
         ``p`` Chebyshev points per block; cached per (a, k, order, p, power), no new g'."""
-        key = (float(a), float(k), int(order), int(p), float(power))
-        cache = self.__dict__.setdefault("_tree_cache", {})
-        if key not in cache:
+        def make():
             t, w, dg = self.dg_panels(a, k, order)
             edges = self.panel_edges(a)
             panel = np.repeat(np.arange(edges.size - 1), int(order))
             density = w * dg * (t ** power if power else 1.0)
-            cache[key] = fastsum.BlockTree(edges, t, density, panel, p)
-        return cache[key]
+            return fastsum.BlockTree(edges, t, density, panel, p)
+        return self._setup.get(("tree", float(a), float(k), int(order), int(p), float(power)), make)
 
     def dg_interpolant(self, a, k, order):
         """g' on [0, a] from its values on the panel nodes of :meth:`dg_panels` (no new evaluation).
@@ -263,16 +264,14 @@ class Tabulated:
     def _h_tree(self):
         """The block tree of h = f' + r f'' (cached): _H_ORDER/2 + 1 Gauss-Legendre nodes per spline
         piece, exact for h (degree 2) times the Lagrange polynomials (degree _H_ORDER - 1) of a block."""
-        tree = self.__dict__.get("_htree")
-        if tree is None:
+        def make():
             w, W = quadrature.gauss_legendre(_H_ORDER // 2 + 1)
             L = (self._hi - self._lo)[:, None]
             t = (self._lo[:, None] + L * w).ravel()
             h = self._ds(t) + t * self._d2s(t)
             panel = np.repeat(np.arange(self._lo.size), w.size)
-            tree = fastsum.BlockTree(np.append(self._lo, self._hi[-1]), t, (L * W).ravel() * h, panel, _H_ORDER)
-            self._htree = tree
-        return tree
+            return fastsum.BlockTree(np.append(self._lo, self._hi[-1]), t, (L * W).ravel() * h, panel, _H_ORDER)
+        return self._setup.get(("h tree",), make)
 
     def _piece_terms(self, x, piece, k):
         """Exact part of g'(x) from the spline piece ``piece`` (one per x), the terms of (G14)."""

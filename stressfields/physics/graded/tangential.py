@@ -250,6 +250,8 @@ def stick_radius_quad(a, Fx_over_muFN, profile, *, k, nu, E0, c0=1.0, E0_2=None,
     k_, nu_, E0_, E0_2_, nu_2_ = _pair(k, nu, E0, E0_2, nu_2, require_decoupled)
     a = check_positive("a", a)
     F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
+    if hasattr(profile, "dg_panels"):      # tabulated: (G48) on the shared knot panels
+        return _tabulated_slip(a, F, profile, k_, rtol)[0] * a
     cN = c_N_star(k_, nu_, E0_, c0, E0_2_, nu_2_)
     cT = c_T_star(k_, nu_, E0_, c0, E0_2_, nu_2_)
     a, F, k_, cN, cT = np.broadcast_arrays(a, F, k_, cN, cT)
@@ -320,6 +322,8 @@ def slip_width_quad(a, Fx_over_muFN, profile, *, k, rtol=1e-10):
     F = check_interval("Fx_over_muFN", Fx_over_muFN, 0.0, 1.0)
     k = check_k(k)
     a = check_positive("a", a)
+    if hasattr(profile, "dg_panels"):      # tabulated: on the shared knot panels
+        return _tabulated_slip(a, F, profile, k, rtol)
     a, F, k = np.broadcast_arrays(a, F, k)
     ones = np.ones(a.shape)
     total = _moment_quad(a, np.zeros(a.shape), ones, profile, k, rtol, from_edge=False)
@@ -331,6 +335,73 @@ def slip_width_quad(a, Fx_over_muFN, profile, *, k, rtol=1e-10):
                 60, geometric=True)
     D = np.where(F == 0.0, 0.0, np.where(thin, D, 1.0 - sc))
     sc = np.where(F == 1.0, 0.0, np.where(thin, 1.0 - D, sc))
+    return sc, D
+
+
+def _tabulated_slip(a, F, profile, k, rtol):
+    """(c/a, 1 - c/a) of a tabulated profile, (G48) as (G56): 1 - F = M(c)/M(a) with M(c) = int_0^c g'(x) x^(1+k) dx
+    (F_N(c) up to a constant, (G32) by parts), on the knot panels of ``Tabulated.dg_panels``.
+
+    The panel sums of w g' x^(1+k) on those nodes (``normal.panel_moments``: their order from rtol,
+    (G55); computed once per (a, k, order), shared with the pressure and the normal force) give M at
+    every panel edge, from below and from above;
+    the panel holding c is found from them, and c inside it by bisection on the partial panel
+    integral from the panel's lower edge (the panels' smoothing map x = e + (c - e)(3w^2 - 2w^3)
+    and the exact g' of ``dg_fast``).  As in ``slip_width_quad``, F <= 1/2 (a thin slip annulus)
+    is solved for int_c^a = F M(a) and 1 - c/a formed from the edge distances; F > 1/2 for
+    M(c) = (1 - F) M(a), geometrically in the first panel (a small stick zone).  ceil(log2(100/rtol))
+    halvings (20 at rtol 1e-4, 40 at 1e-10): the cost falls as rtol loosens, with the order."""
+    a, F, k = (np.asarray(v, float) for v in np.broadcast_arrays(a, F, k))
+    sc, D = np.empty(a.shape), np.empty(a.shape)
+    for ak in np.unique(np.stack([a.ravel(), k.ravel()], axis=-1), axis=0):
+        m = (a == ak[0]) & (k == ak[1])
+        sc[m], D[m] = _slip_at(float(ak[0]), float(ak[1]), F[m], profile, rtol)
+    return sc, D
+
+
+def _slip_at(a, k, F, profile, rtol):
+    """``_tabulated_slip`` for one contact radius a and one k (F a 1-D array)."""
+    order, S = normal.panel_moments(profile, a, k, rtol)
+    edges = profile.panel_edges(a)
+    below = np.concatenate([[0.0], np.cumsum(S)])                  # M at the edges
+    above = np.concatenate([np.cumsum(S[::-1])[::-1], [0.0]])       # M(a) - M, summed from the top
+    total = below[-1]
+    thin = F <= 0.5
+    last = S.size - 1
+    i = np.where(thin, np.searchsorted(-above, -F * total, side="right") - 1,
+                 np.searchsorted(below, (1.0 - F) * total, side="right") - 1)
+    i = np.clip(i, 0, last)
+    lo, width = edges[i], edges[i + 1] - edges[i]
+    u, W = quadrature.gauss_legendre(int(order))
+    smooth, dsmooth = u * u * (3.0 - 2.0 * u), 6.0 * u * (1.0 - u) * W
+
+    def partial(s, sel):
+        # int over [e_i, e_i + s (e_i+1 - e_i)] of g' x^(1+k), the smoothing map on the partial panel
+        span = (s * width[sel])[:, None]
+        x = lo[sel, None] + span * smooth
+        return np.sum(span * dsmooth * profile.dg_fast(x, k) * x ** (1.0 + k), axis=1)
+
+    steps = min(56, int(np.ceil(np.log2(100.0 / rtol))))
+    s = np.empty(F.shape)
+    for sel, geometric in ((thin, False), (~thin & (i > 0), False), (~thin & (i == 0), True)):
+        idx = np.flatnonzero(sel & (F > 0.0) & (F < 1.0))
+        if idx.size == 0:
+            continue
+        if thin[idx[0]]:
+            # above[i+1] + S_i - partial(c) = F M(a): the left side falls as c rises
+            def up(x, idx=idx):
+                return above[i[idx] + 1] + S[i[idx]] - partial(x, idx) > F[idx] * total
+        else:
+            def up(x, idx=idx):
+                return below[i[idx]] + partial(x, idx) < (1.0 - F[idx]) * total
+        lo_s = np.full(idx.size, 1e-300 if geometric else 0.0)
+        n = steps + (int(np.ceil(np.log2(690.0))) if geometric else 0)   # 690: ln(1e300)
+        s[idx] = bisect(up, lo_s, np.ones(idx.size), n, geometric=geometric)
+    # c = e_i + s (e_i+1 - e_i); 1 - c/a from the edge distance a - e_i+1 (exact for the cuts near a)
+    D = ((a - edges[i + 1]) + (1.0 - s) * width) / a
+    sc = (lo + s * width) / a
+    sc = np.where(F <= 0.0, 1.0, np.where(F >= 1.0, 0.0, sc))
+    D = np.where(F <= 0.0, 0.0, np.where(F >= 1.0, 1.0, D))
     return sc, D
 
 
