@@ -89,7 +89,15 @@ class PeriodicPotential:
             mid = 0.5 * (lo + hi)
             ok = closed_bound(mid, pole) <= tol
             lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
-        Zs = np.maximum(lo, 1e-3)
+        # where even the surface misses tol (rtol near rounding), the switch balances the closed form's
+        # bound against that of the longest series, so neither is used where the other is better
+        cap = lambda Z: beta * np.exp(-MAX_SERIES * Z) * (1.0 + Z * MAX_SERIES) / (1.0 - np.exp(-Z)) ** 2
+        blo, bhi = np.full(R, 1e-6), np.full(R, 40.0)
+        for _ in range(60):
+            mid = 0.5 * (blo + bhi)
+            closer = closed_bound(mid, pole) <= cap(mid)
+            blo, bhi = np.where(closer, mid, blo), np.where(closer, bhi, mid)
+        Zs = np.where(lo > 0.0, np.maximum(lo, 1e-6), blo)
         q = np.exp(-Zs)
         # series length: truncation of Im G plus z |G'| at Z >= Zs (decreasing there once M Zs >= 1)
         M = np.full(R, MAX_SERIES)
