@@ -161,7 +161,7 @@ VARIABLES = (
     Variable("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2 at depth z", units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
     Variable("von_mises", "von Mises equivalent stress sqrt(3 J2) at depth z", units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
     Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z (at z = 0: the "
-             "limit z -> 0+)", units_physical="Pa/m", scale=PER_HALF_WIDTH,
+             "limit z -> 0+)", units_physical="Pa/m", scale=PER_HALF_WIDTH, recorded_when=("z",),
              comment="NaN (validity = 4) at z = 0 on a contact edge and, under partial slip, a stick edge, where the "
                      "limit depends on the direction of approach. Not covered by error_estimate."),
     Variable("shear_traction", "shear traction q(x) on the half-plane along +x at the surface point (partial slip: "
@@ -298,8 +298,12 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
 
 
 def _check_loads(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
-    """nu in physical mode; the tangential load: with mu, exact methods only, at most mu P."""
+    """nu in physical mode; the depth and the tangential load: exact methods only; the tangential load with mu,
+    at most mu P."""
     problems = []
+    if values.get("z") is not None and method in WAVY_APPROXIMATE_METHODS:
+        problems.append(f"method.method = {method!r} is an approximate pressure; the field below the surface (z) "
+                        f"needs an exact method ({', '.join(WAVY_SERIES_METHODS)})")
     if physical and values.get("nu") is None:
         problems.append("missing parameter 'nu' (Poisson's ratio of the half-plane; a number in [0, 0.5]): "
                         "required in physical mode")
@@ -357,7 +361,8 @@ def _route(values: Mapping[str, Any], method: str, rtol: float) -> tuple[str, st
     """The route table's (route, accuracy) of the method, whatever the values (``physics.wavy.resolve``)."""
     from ..physics.wavy import resolve
 
-    return resolve(method, rtol)
+    below = values.get("z") is not None and method not in WAVY_APPROXIMATE_METHODS
+    return resolve(method, rtol, below=below)
 
 
 def _show(v):
