@@ -140,7 +140,8 @@ VARIABLES = (
                      "non-periodic series error is below the tolerance (validity = 3)."),
     Variable("error_estimate", "upper bound of the error of pressure, peak_pressure and max_pressure (only; "
              "not of uz) and, where the recipe gives z, of the stresses below the surface under normal load (under "
-             "a tangential load they are within (1 + 4 mu) error_estimate): periodic, rounding of the closed form; non-periodic, truncated tail + rounding",
+             "a tangential load they are within (1 + 4 mu) error_estimate): periodic, rounding of the closed form; "
+             "non-periodic, truncated tail + rounding",
              units_physical="Pa", scale=PSTAR, dims=CASE,
              comment="In units of p* (docs/theory/wavy.md (W23), (W31)). It does not bound uz, whose scale is "
                      "Delta_1: inside the contact uz = u_z(0) - g(x) from closed forms; outside it is good to "
@@ -155,11 +156,16 @@ VARIABLES = (
                      "values are the best available, good to error_estimate."),
     *(Variable(f"sigma_{c}", f"stress component sigma_{c} at depth z (z = 0: the surface)", units_physical="Pa",
                scale=PSTAR, comment=_INTERIOR, recorded_when=("z",)) for c in ("xx", "yy", "zz", "xz")),
-    Variable("sigma_1", "largest principal stress at depth z", units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
-    Variable("sigma_2", "intermediate principal stress at depth z", units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
-    Variable("sigma_3", "smallest principal stress at depth z", units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
-    Variable("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2 at depth z", units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
-    Variable("von_mises", "von Mises equivalent stress sqrt(3 J2) at depth z", units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
+    Variable("sigma_1", "largest principal stress at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
+    Variable("sigma_2", "intermediate principal stress at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
+    Variable("sigma_3", "smallest principal stress at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
+    Variable("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2 at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
+    Variable("von_mises", "von Mises equivalent stress sqrt(3 J2) at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",)),
     Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z (at z = 0: the "
              "limit z -> 0+)", units_physical="Pa/m", scale=PER_HALF_WIDTH, recorded_when=("z",),
              comment="NaN (validity = 4) at z = 0 on a contact edge and, under partial slip, a stick edge, where the "

@@ -53,11 +53,13 @@ def periodic_pressure(amps, wns, a):
 
 
 def nonperiodic_pressure(amps, wns, a):
-    """p/p* = sum_m D_m sin((2m + 1) theta), cos theta = s/a, D_m = sum_i 2 (Delta_i/Delta_1) n_i (-1)^m J_{2m+1}(a n_i)."""
+    """p/p* = sum_m D_m sin((2m + 1) theta), cos theta = s/a,
+    D_m = sum_i 2 (Delta_i/Delta_1) n_i (-1)^m J_{2m+1}(a n_i)."""
     D = []
     m = 0
     while True:
-        d = mp.fsum(2 * mp.mpf(di) / amps[0] * n * (-1) ** m * mp.besselj(2 * m + 1, a * n) for di, n in zip(amps, wns))
+        d = mp.fsum(2 * mp.mpf(di) / amps[0] * n * (-1) ** m * mp.besselj(2 * m + 1, a * n)
+                    for di, n in zip(amps, wns))
         D.append(d)
         if m > a * max(wns) and abs(d) < mp.mpf("1e-30"):
             break
@@ -78,7 +80,8 @@ def stresses(p, a, x, z, periodic):
         breaks = [-mp.pi / 2, mp.asin(x / a), mp.pi / 2]
     if periodic:
         zeta = mp.mpc(x, z)
-        G = mp.quad(lambda f: p(a * mp.sin(f)) * mp.cot((zeta - a * mp.sin(f)) / 2) * a * mp.cos(f), breaks) / (2 * mp.pi)
+        G = mp.quad(lambda f: p(a * mp.sin(f)) * mp.cot((zeta - a * mp.sin(f)) / 2) * a * mp.cos(f),
+                    breaks) / (2 * mp.pi)
         Gp = -mp.quad(lambda f: p(a * mp.sin(f)) / mp.sin((zeta - a * mp.sin(f)) / 2) ** 2 * a * mp.cos(f),
                       breaks) / (4 * mp.pi)
         return (G.imag + z * Gp.real, G.imag - z * Gp.real, -z * Gp.imag)
@@ -103,6 +106,7 @@ def points(a, rng, count):
     x[near:near + 2] = [a * (1 - 1e-6), -a * (1 + 1e-6)]
     z[near:near + 2] = [1e-4 * a, 1e-4 * a]
     x[near + 2] = 0.0
+    x[near + 3], z[near + 3] = math.pi / 3, 10 * math.pi          # the deepest: 5 lambda_1
     return x, z
 
 

@@ -552,7 +552,8 @@ def subsurface(names, x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenu
 
     info: "error_estimate" per point (p* units, a bound of the stresses' error), "normal_error" its
     part from the normal pressure (the whole under normal load), "converged" (every potential's own
-    bound within rtol: the stresses are then within (1 + 4 mu) rtol p*), "stick_over_a" and "stick_admissible" per point's case,
+    bound within rtol: the stresses are then within (1 + 4 mu) rtol p*), "stick_over_a" and
+    "stick_admissible" per point's case,
     "dpdz_undefined" per point (at z = 0 on a contact or stick edge the limit of dpdz depends on the
     direction of approach).
     """

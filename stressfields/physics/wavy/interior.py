@@ -247,7 +247,7 @@ def shear_stresses(H, Ht, zt):
 def plane_strain_invariants(sxx, szz, sxz, nu):
     """sigma_yy = nu (sigma_xx + sigma_zz) and, from the in-plane principal stresses
     c +- hypot((sxx - szz)/2, sxz) and sigma_yy: sigma_1 >= sigma_2 >= sigma_3, tau_max = (sigma_1 - sigma_3)/2
-    and von Mises sqrt(3 J2) (docs/theory/wavy.md (W40))."""
+    and von Mises sqrt(3 J2) (docs/theory/wavy.md (W36))."""
     syy = nu * (sxx + szz)
     c = 0.5 * (sxx + szz)
     R = np.hypot(0.5 * (sxx - szz), sxz)

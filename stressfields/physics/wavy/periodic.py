@@ -283,7 +283,7 @@ def cosine_sums(a, g, *, normalised=False):
     cos(j a), u = eps/2 (the bound of (W35), which has sum_j G_kj = 1).  The coefficients of
     (sum_m g_m e^{ima} w^m)(sum_m g_m e^{-ima} w^m): with g_m = binom(2m, m)/4^m the Legendre
     generating function (W35) (``normalised``: the weights of each k sum to 1, as (W35) counts them);
-    with the coefficients of sqrt(1 - u) those of sqrt(1 - 2 w cos a + w^2), docs/theory/wavy.md (W37)."""
+    with the coefficients of sqrt(1 - u) those of sqrt(1 - 2 w cos a + w^2), docs/theory/wavy.md (W40)."""
     a = np.asarray(a, dtype=float).reshape(-1)
     top = len(g)
     j = np.arange(top)

@@ -50,7 +50,8 @@ _AUTO_ROUTE = ("; auto: pressure of a narrow periodic contact by the non-periodi
 _BELOW_ROUTE = ("; below the surface: complex potential of the surface tractions (docs/theory/wavy.md (W36)-(W41)), "
                 "periodic closed finite form near the surface and Taylor series in w at depth, switched a priori by "
                 "their bounds (W39); single indenter, the series in omega (W38)")
-_BELOW_ACCURACY = ("; stresses below the surface: |error| <= error_estimate <= rtol * p* under normal load (closed-form "
+_BELOW_ACCURACY = ("; stresses below the surface: |error| <= error_estimate <= rtol * p* under normal load "
+                   "(closed-form "
                    "rounding and series truncation bounds, (W38), (W39)), (1 + 4 mu) of it under partial slip; dpdz "
                    "not bounded")
 
