@@ -93,8 +93,8 @@ _INTERIOR = ("Plane strain, from the complex potential of the surface tractions 
              "limit of the sum over all periods; (W37)). At z = 0 sigma_zz = -pressure and sigma_xz = -shear_traction "
              "exactly. Within error_estimate (p*).")
 _PEAK = ("Grid of 41 x 41 points over 0 <= z <= 3a and 0 <= x <= 2a (both signs of x under a tangential load; at "
-         "most half a period), refined by 16 zooms of a 9 x 9 grid (docs/theory/wavy.md (W44)); the position to "
-         "about 1e-11 a, the value to the fields' accuracy.")
+         "most half a period), refined by 16 zooms of a 9 x 9 grid (docs/theory/wavy.md (W44)); the value to the "
+         "fields' accuracy, the position to about 1e-8 a (the field is flat at its peak).")
 _SERIES = ("the closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or the truncated Bessel "
            "series of eq. (14) (non-periodic) for this 2a/lambda_1 and harmonic count")
 VARIABLES = (
