@@ -278,3 +278,15 @@ def test_stick_width_relation():
             assert ok and abs(1 - Pc / Pa - fx) <= 1e-12
     assert float(api.stick_half_width(0.4, *F2, 0.0, periodic=True)[0]) == 1.0
     assert float(api.stick_half_width(0.4, *F2, 1.0, periodic=True)[0]) == 0.0
+
+
+@pytest.mark.parametrize("periodic", [True, False])
+def test_values_do_not_depend_on_the_other_cases_of_the_call(periodic):
+    """A case's stresses are the same bits alone and beside other contact widths and harmonic counts
+    (the content hash of a file must not depend on its chunking)."""
+    x, z = np.linspace(-2, 2, 11), np.array([0.0, 0.05, 0.7, 4.0])[:, None]
+    alone, _ = field(x, z, 0.3, periodic=periodic, n_harmonics=2)
+    both, _ = field(x, z[..., None], np.array([0.3, 0.9])[:, None], periodic=periodic,
+                    n_harmonics=np.array([[2, 1]]).T)
+    for k in STRESS:
+        np.testing.assert_array_equal(alone[k], both[k][:, 0, :])
