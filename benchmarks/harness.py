@@ -276,6 +276,27 @@ def _wavy(cfg: Config) -> dict:
                 for m, sub in ((SERIES, False), (AUTO_WAVY, True)) for rt in RTOLS]
     out["wavy periodic, one harmonic (Westergaard), 2a/lambda = 0.001: pressure"] = _rows(
         west, float(np.max(west)), variants, x.size, cfg.repeats)
+    out.update(_wavy_interior(cfg))
+    return out
+
+
+def _wavy_interior(cfg: Config) -> dict:
+    """sigma_zz below the surface, 11 harmonics, x over two contact widths and z from 0 to 3a (the
+    target: >= 1e6 points per CPU second; the periodic series at depth shortens as rtol loosens)."""
+    from stressfields.physics import wavy
+
+    rng = np.random.default_rng(11)
+    x, z = rng.uniform(-2.0, 2.0, cfg.points), rng.uniform(0.0, 3.0, cfg.points)
+    table = ([1.0] + [0.1 / i ** 2 for i in range(2, 12)], list(range(1, 12)))
+    out = {}
+    for name, periodic in (("periodic", True), ("single indenter", False)):
+        def run(rtol, periodic=periodic):
+            return wavy.api.subsurface(("sigma_zz",), x, z, 0.6, *table, periodic=periodic, rtol=rtol)[0]["sigma_zz"]
+
+        ref = run(REF_RTOL)
+        variants = [(SERIES, rt, lambda rt=rt, run=run: run(rt)) for rt in RTOLS]
+        out[f"wavy {name}, 11 harmonics, 2a/lambda = 0.6: sigma_zz below the surface"] = _rows(
+            ref, float(np.max(np.abs(ref))), variants, x.size, cfg.repeats)
     return out
 
 

@@ -293,7 +293,9 @@ def _levels(values, peak):
 
 def _peak(ds, name, hold) -> dict | None:
     """The file's peak of `name` for the shown case and where it sits (on y = 0), or None."""
-    keys = (f"{name}_peak", f"{name}_peak_r", f"{name}_peak_depth")
+    # the position along x: the radius r of an axisymmetric field, x itself for a plane one (wavy)
+    along = f"{name}_peak_r" if f"{name}_peak_r" in ds.data_vars else f"{name}_peak_x"
+    keys = (f"{name}_peak", along, f"{name}_peak_depth")
     if not all(k in ds.data_vars for k in keys) or _scalar(ds, "y", hold, 0.0) != 0.0:
         return None                             # no peak in the file, or the plane is not y = 0
     value, x, depth = (_scalar(ds, k, hold) for k in keys)
@@ -327,7 +329,8 @@ def _mark(ax, ds, da, peak, p0, hold):
     the file gives r >= 0), and its value and position in the legend."""
     if peak["flag"] == 2 or not np.isfinite(peak["x"]):       # NaN: no point to mark
         return
-    tangential = _scalar(ds, "mu", hold, 0.0) * _scalar(ds, "ux0", hold, 0.0) > 0.0
+    load = max(_scalar(ds, k, hold, 0.0) for k in ("ux0", "fx", "tangential_force"))
+    tangential = _scalar(ds, "mu", hold, 0.0) * load > 0.0
     xs = [peak["x"]] if tangential or peak["x"] == 0.0 else [-peak["x"], peak["x"]]
     length, unit = _unit(ds["x"]), _unit(da)
     where = f"x = {'+-' if len(xs) > 1 else ''}{peak['x']:.4g} {length}, z = {peak['depth']:.4g} {length}"

@@ -20,6 +20,8 @@ plt = plot.require_matplotlib()          # Agg: headless
 ROOT = Path(__file__).resolve().parents[1]
 RECIPES = sorted(p.stem for p in (ROOT / "recipes").glob("*subsurface*.toml"))
 SECTIONS = ["cone_subsurface", "hertz_mindlin_subsurface", "hertz_subsurface", "power_law_n4_subsurface"]
+#: the wavy family's sections (plane strain: the peak's position is x itself, `<name>_peak_x`)
+WAVY_SECTIONS = ["wavy_subsurface_indenter", "wavy_subsurface_periodic"]
 #: a small grid holding x = 0 and z = 0 (the centre pressure p(0) is read there)
 SMALL = {"x": {"start": -2.0, "stop": 2.0, "num": 13}, "z": {"start": 0.0, "stop": 2.0, "num": 9}}
 
@@ -54,8 +56,24 @@ def _maps(fig):
     return [ax for ax in fig.axes if ax.get_visible() and ax.get_ylabel().startswith("z")]
 
 
-def test_the_subsurface_recipes_are_the_five_quick_looks():
-    assert set(SECTIONS) | {"history_hertz_fretting_subsurface"} == set(RECIPES)
+def test_the_subsurface_recipes_are_the_quick_looks():
+    assert set(SECTIONS + WAVY_SECTIONS) | {"history_hertz_fretting_subsurface", "wavy_subsurface_slip"} == set(RECIPES)
+
+
+@pytest.mark.parametrize("stem", WAVY_SECTIONS)
+def test_a_wavy_section_marks_its_peak_at_x(drawn, stem):
+    """The plane field's peak is marked where the file puts it (x >= 0 under normal load, mirrored)."""
+    recipe, ds, fig = _figure(drawn, stem)
+    maps = _maps(fig)
+    assert len(maps) == len(recipe.plot["variables"])
+    ax = maps[0]                                    # tau_max, the one with peaks in the file
+    value, x, depth = (float(ds[f"tau_max_peak{s}"]) for s in ("", "_x", "_depth"))
+    line = _marker(ax)
+    np.testing.assert_array_equal(line.get_xdata(), [x] if x == 0 else [-x, x])
+    np.testing.assert_array_equal(line.get_ydata(), [depth] * len(line.get_xdata()))
+    assert f"tau_max peak {value:#.4g} p*" in ax.get_legend().get_texts()[0].get_text()
+    assert float(ds.tau_max.max()) <= value * (1 + 1e-8)
+    plt.close(fig)
 
 
 @pytest.mark.parametrize("stem", RECIPES)

@@ -32,6 +32,7 @@ SCALE_SYMBOLS = {
     "mu F_N, the normal force times the coefficient of friction": "(mu F_N)",
     "mu F_N delta (coefficient of friction times normal force times indentation depth)": "(mu F_N delta)",
     "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)": "p*",
+    "p*/a, with a the contact half-width": "(p*/a)",
     "the amplitude Delta_1 of the base wave": "Delta_1",
 }
 #: size limit of a tabulated profile's samples (profile_r, profile_f): its set-up costs

@@ -29,7 +29,7 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
-from ..physics.names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS
+from ..physics.names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
 from .base import ARRAY, INT, STR, Options, Parameter, Scenario, Variable
 
 REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy surface with an elastic "
@@ -45,6 +45,7 @@ MAX_WAVENUMBER = 500
 DOMAINS = ("periodic", "nonperiodic")
 DELTA_1 = "the amplitude Delta_1 of the base wave"
 HALF_WIDTH = "the contact half-width a"
+PER_HALF_WIDTH = "p*/a, with a the contact half-width"
 #: what a per-contact (x-independent) quantity depends on; only the swept ones become dimensions
 CASE = ("domain", "amplitudes", "wavenumbers", "n_harmonics", "E", "nu", "lambda_1", "a")
 
@@ -63,27 +64,53 @@ PARAMETERS = (
               kind=INT, low=1, label="number of harmonics"),
     Parameter("E", "Young's modulus of the half-plane (giving it switches to physical units)", units="Pa",
               low=0.0, low_open=True, high=1e15, sweepable=False, mode="physical", label="Young's modulus E"),
-    Parameter("nu", "Poisson's ratio of the half-plane", low=0.0, high=0.5, sweepable=False, mode="physical",
-              label="Poisson's ratio nu"),
+    Parameter("nu", "Poisson's ratio of the half-plane (required in physical mode; normalised mode: used by "
+              "sigma_yy, the invariants and dpdz below the surface, 0.3 where z is given without it)",
+              low=0.0, high=0.5, sweepable=False, label="Poisson's ratio nu"),
     Parameter("lambda_1", "wavelength lambda_1 of the base wave", units="m", low=0.0, low_open=True,
               high=1e6, sweepable=False, mode="physical", label="base wavelength lambda_1"),
     Parameter("a", "contact width 2a divided by the base wavelength lambda_1", required=True,
               low=0.0, high=1.0, low_open=True, high_open=True, label="width 2a / lambda_1"),
+    Parameter("mu", "coefficient of friction of the partial-slip tangential load (with fx or tangential_force)",
+              low=0.0, high=10.0, label="friction coefficient"),
+    Parameter("fx", "tangential load Q divided by mu P (P the normal load per period, or per unit length of the single "
+              "indenter), in [0, 1]; 1: the onset of gross slip", low=0.0, high=1.0, label="tangential load Q / (mu P)"),
+    Parameter("tangential_force", "tangential load Q per period (single indenter: per unit length) along +x, at most "
+              "mu times the normal load (instead of fx; physical mode)", units="N/m", low=0.0, high=1e15,
+              when={"fx": (None,)}, label="tangential load Q"),
+    Parameter("z", "depth below the surface divided by the contact half-width a (0: the surface)",
+              meaning_physical="depth below the surface (0: the surface)", units="1", units_physical="m",
+              low=0.0, high=1e6, label="depth z / a", label_physical="depth z", axis="Z"),
     Parameter("x", "surface coordinate x divided by the contact half-width a",
               meaning_physical="surface coordinate x from the contact centre", units="1", units_physical="m",
               default=0.0, low=-1e6, high=1e6, label="x / a", label_physical="x", axis="X"),
 )
 
+#: the tangential load's parameters: the surface pressure and displacement do not depend on them (uncoupled)
+SHEAR = ("mu", "fx", "tangential_force")
+#: what the surface pressure and displacement depend on: every parameter but the depth and the shear load
+SURFACE = tuple(p.name for p in PARAMETERS if p.name not in ("z",) + SHEAR)
+#: what a per-case quantity of the field below the surface depends on
+LOADED = CASE + SHEAR
+_INTERIOR = ("Plane strain, from the complex potential of the surface tractions (docs/theory/wavy.md (W36)-(W41)): "
+             "periodic, the closed finite form near the surface and its Taylor series in w = exp(i 2 pi (x + i z)/"
+             "lambda_1) at depth, switched a priori by their bounds (W39); single indenter, the series in omega "
+             "(W38). The mean pressure's k = 0 mode is kept (periodic: sigma_xx = sigma_zz = -p_inf as z -> inf, the "
+             "limit of the sum over all periods; (W37)). At z = 0 sigma_zz = -pressure and sigma_xz = -shear_traction "
+             "exactly. Within error_estimate (p*).")
+_PEAK = ("Grid of 41 x 41 points over 0 <= z <= 3a and 0 <= x <= 2a (both signs of x under a tangential load; at "
+         "most half a period), refined by 16 zooms of a 9 x 9 grid (docs/theory/wavy.md (W44)); the value to the "
+         "fields' accuracy, the position to about 1e-8 a (the field is flat at its peak).")
 _SERIES = ("the closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or the truncated Bessel "
            "series of eq. (14) (non-periodic) for this 2a/lambda_1 and harmonic count")
 VARIABLES = (
     Variable("pressure", "contact pressure p(x) (compressive positive; 0 outside the contact)",
-             units_physical="Pa", scale=PSTAR,
+             units_physical="Pa", scale=PSTAR, dims=SURFACE,
              comment="Exact series, length chosen from method.rtol (see n_terms, error_estimate). With "
                      "method approximate_eq18/eq20 it is instead the paper's approximate formula, which is "
                      "NOT accurate (validity = 2); all other variables stay exact.", label="contact pressure p(x)"),
     Variable("uz", "surface displacement u_z(x), positive into the body", units_physical="m",
-             scale=DELTA_1,
+             scale=DELTA_1, dims=SURFACE,
              comment="Datum (C = 0 in eq. 5): periodic domain, kernel ln|2 sin(pi (x - xi)/lambda_1)|, so u_z "
                      "has zero mean over one period; non-periodic domain, kernel ln|2 pi (x - xi)/lambda_1| "
                      "(lengths in units of lambda_1/(2 pi)). Inside the contact u_z(x) = u_z(0) - g(x).",
@@ -122,7 +149,9 @@ VARIABLES = (
                      "non-periodic series error is below the tolerance (validity = 3).",
                      label="periodic correction"),
     Variable("error_estimate", "upper bound of the error of pressure, peak_pressure and max_pressure (only; "
-             "not of uz): periodic, rounding of the closed form; non-periodic, truncated tail + rounding",
+             "not of uz) and, where the recipe gives z, of the stresses below the surface under normal load (under "
+             "a tangential load they are within (1 + 4 mu) error_estimate): periodic, rounding of the closed form; "
+             "non-periodic, truncated tail + rounding",
              units_physical="Pa", scale=PSTAR, dims=CASE,
              comment="In units of p* (docs/theory/wavy.md (W23), (W31)). It does not bound uz, whose scale is "
                      "Delta_1: inside the contact uz = u_z(0) - g(x) from closed forms; outside it is good to "
@@ -135,15 +164,67 @@ VARIABLES = (
              flag_meanings=("not_converged", "converged"), always=True,
              comment="0: rtol was not reached (below rounding, or the length cap as 2a/lambda_1 -> 1); the "
                      "values are the best available, good to error_estimate.", label="series converged"),
-    Variable("validity", "validity of pressure and uz at the point", dtype="int8", flag_values=(0, 1, 2, 3),
+    *(Variable(f"sigma_{c}", f"stress component sigma_{c} at depth z (z = 0: the surface)", units_physical="Pa",
+               scale=PSTAR, comment=_INTERIOR, recorded_when=("z",), label=f"stress sigma_{c}")
+      for c in ("xx", "yy", "zz", "xz")),
+    Variable("sigma_1", "largest principal stress at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",), label="sigma_1 (largest)"),
+    Variable("sigma_2", "intermediate principal stress at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",), label="sigma_2 (middle)"),
+    Variable("sigma_3", "smallest principal stress at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",), label="sigma_3 (smallest)"),
+    Variable("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2 at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",), label="shear stress tau_max"),
+    Variable("von_mises", "von Mises equivalent stress sqrt(3 J2) at depth z",
+             units_physical="Pa", scale=PSTAR, recorded_when=("z",), label="von Mises stress"),
+    Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z (at z = 0: the "
+             "limit z -> 0+)", units_physical="Pa/m", scale=PER_HALF_WIDTH, recorded_when=("z",),
+             comment="NaN (validity = 4) at z = 0 on a contact edge and, under partial slip, a stick edge, where the "
+                     "limit depends on the direction of approach. Not covered by error_estimate.",
+             label="dp_h/dz"),
+    Variable("shear_traction", "shear traction q(x) on the half-plane along +x at the surface point (partial slip: "
+             "mu [p(x; a) - p(x; c)])", units_physical="Pa", scale=PSTAR, dims=SURFACE + SHEAR,
+             recorded_when=("fx", "tangential_force"),
+             comment="Ciavarella (1998) and Jager (1997): the normal pressure at the contact half-width a less that at "
+                     "the stick half-width c, times mu (docs/theory/wavy.md (W43)); uncoupled (the shear traction "
+                     "leaves the pressure unchanged).", label="shear traction q(x)"),
+    Variable("stick_half_width", "half-width c of the stick zone (a: normal load only; 0: gross slip)",
+             units_physical="m", scale=HALF_WIDTH, dims=LOADED, recorded_when=("fx", "tangential_force"),
+             comment="The largest c <= a with P(c) = (1 - fx) P(a), P the normal load at contact half-width c "
+                     "(docs/theory/wavy.md (W43)).", label="stick half-width c"),
+    *(Variable(f"{name}{suffix}", f"{what}{tail}", units_physical=up, scale=sc, dims=LOADED + ("nu",),
+               comment=_PEAK, label=f"{lab} {name}") for name, what in (("tau_max", "maximum shear stress"),
+                                                                        ("von_mises", "von Mises equivalent stress"))
+      for suffix, tail, up, sc, lab in (("_peak", " at its largest over the search box", "Pa", PSTAR, "peak"),
+                                        ("_peak_x", ": x of its largest value", "m", HALF_WIDTH, "x of peak"),
+                                        ("_peak_depth", ": depth z of its largest value", "m", HALF_WIDTH,
+                                         "z of peak"))),
+    Variable("peak_validity", "validity of the peak variables of the case", dtype="int8", dims=LOADED + ("nu",),
+             flag_values=(0, 4), flag_meanings=("within_stated_accuracy", "search_not_converged"),
+             always=tuple(f"{n}{s}" for n in ("tau_max", "von_mises") for s in ("_peak", "_peak_x", "_peak_depth")),
+             comment="4: the best point lies on the border of the search box (|x| = 2a or half a period, z = 3a): "
+                     "the values are the best found there, not necessarily the peak.",
+             label="validity of the peaks"),
+    Variable("validity", "validity of pressure and uz (and of the stresses below the surface) at the point",
+             dtype="int8", flag_values=(0, 1, 2, 3, 4, 5),
              flag_meanings=("series_converged", "series_not_converged", "approximate_formula",
-                            "nonperiodic_series_within_rtol"), always=True,
+                            "nonperiodic_series_within_rtol", "undefined_direction_dependent_limit",
+                            "stick_zone_not_admissible"), always=True,
              comment="1: the series did not meet method.rtol (see converged, error_estimate); 2: method "
                      "approximate_eq18/eq20, pressure is the paper's inaccurate approximation; 3: method auto, "
                      "periodic domain: pressure is the non-periodic series, within method.rtol of the "
-                     "periodic one (see periodic_correction); uz and the per-case values stay periodic.",
-                     label="validity of pressure and uz"),
+                     "periodic one (see periodic_correction); uz and the per-case values stay periodic. Below the "
+                     "surface: 1 also where the stresses' bound exceeds method.rtol; 4: dpdz is NaN at z = 0 on a "
+                     "contact or stick edge (its limit depends on the direction of approach); 5: partial slip "
+                     "where the load P(c) is not increasing on [c, a], so the stick zone would not shrink "
+                     "monotonically under the growing tangential load and the superposition (W43) is not the "
+                     "solution.",
+             label="validity"),
 )
+#: the variables written when a recipe names none: those of the surface (the field below it joins when
+#: the recipe gives z, the shear traction and stick width with a tangential load: ``recorded_when``)
+DEFAULTS = tuple(v.name for v in VARIABLES[:VARIABLES.index(next(v for v in VARIABLES if v.name == "sigma_xx"))]
+                 if not v.always)
 #: variable -> the scale its normalised value is multiplied by in physical mode (its declaration's)
 _SCALE = {v.name: v.scale for v in VARIABLES if v.scale}
 
@@ -171,10 +252,21 @@ def _evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options, peri
     else:
         pstar, length, half_width = 1.0, 1.0, 1.0
     x = np.asarray(p.get("x", 0.0), dtype=float) / half_width
+    z = np.asarray(p.get("z", 0.0), dtype=float) / half_width
+    mu = np.asarray(p.get("mu", 0.0), dtype=float)
+    fx = p.get("fx")
+    if fx is None and p.get("tangential_force") is not None:
+        # Q per period (per unit length) over mu P, P = p_inf lambda_1 with p_inf in pascals (W10)
+        load = wv.mean_pressure(a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics")) * pstar
+        with np.errstate(divide="ignore", invalid="ignore"):
+            fx = np.where(mu > 0.0, np.asarray(p["tangential_force"], dtype=float) / (mu * load * p["lambda_1"]), 0.0)
+    fx = np.asarray(0.0 if fx is None else fx, dtype=float)
     raw = wv.fields(names, x, a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics"),
                     method=options["method"], rtol=options["rtol"],
-                    contact_points=_contact_points(options, a, half_width))
-    factor = {PSTAR: pstar, DELTA_1: length, HALF_WIDTH: half_width}
+                    contact_points=_contact_points(options, a, half_width), z_over_a=z,
+                    nu=np.asarray(p.get("nu", 0.3), dtype=float), mu=mu, fx=fx,
+                    below=(options.get("sweep") or p).get("z") is not None)
+    factor = {PSTAR: pstar, DELTA_1: length, HALF_WIDTH: half_width, PER_HALF_WIDTH: pstar / half_width}
     return {n: raw[n] * factor[_SCALE[n]] if n in _SCALE else raw[n] for n in names}
 
 
@@ -222,6 +314,7 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
     elif N is not None and np.max(N) > len(wns):
         problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
+    problems += _check_loads(values, physical, method)
     domain = values.get("domain")
     if method in WAVY_APPROXIMATE_METHODS and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
         problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "
@@ -229,11 +322,72 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
     return problems
 
 
+def _check_loads(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
+    """nu in physical mode; the depth and the tangential load: exact methods only; the tangential load with mu,
+    at most mu P."""
+    problems = []
+    if values.get("z") is not None and method in WAVY_APPROXIMATE_METHODS:
+        problems.append(f"method.method = {method!r} is an approximate pressure; the field below the surface (z) "
+                        f"needs an exact method ({', '.join(WAVY_SERIES_METHODS)})")
+    if physical and values.get("nu") is None:
+        problems.append("missing parameter 'nu' (Poisson's ratio of the half-plane; a number in [0, 0.5]): "
+                        "required in physical mode")
+    load = next((k for k in ("fx", "tangential_force") if values.get(k) is not None
+                 and np.any(np.asarray(values[k], dtype=float) > 0.0)), None)
+    if load is None:
+        return problems
+    if values.get("mu") is None:
+        problems.append(f"{load} is a tangential load of partial slip, which needs the friction coefficient mu; "
+                        "give mu (a number in [0, 10])")
+    if method in WAVY_APPROXIMATE_METHODS:
+        problems.append(f"method.method = {method!r} is an approximate pressure; a tangential load ({load}) needs an "
+                        f"exact method ({', '.join(WAVY_SERIES_METHODS)})")
+    if load == "tangential_force" and values.get("mu") is not None and not problems and physical:
+        problems += _check_tangential_force(values)
+    return problems
+
+
+def _check_tangential_force(values: Mapping[str, Any]) -> list[str]:
+    """tangential_force <= mu P (P = p_inf lambda_1 per period, or per unit length of the single indenter),
+    checked for every combination of the sweep before anything is computed."""
+    from ..physics.wavy import mean_pressure
+
+    amps, wns = np.asarray(values["amplitudes"], dtype=float), np.asarray(values["wavenumbers"], dtype=float)
+    E, nu, lam = (float(values[k]) for k in ("E", "nu", "lambda_1"))
+    pstar = math.pi * E / (1.0 - nu ** 2) * amps[0] / lam
+    a = np.asarray(values["a"], dtype=float).reshape(-1, 1, 1, 1)
+    N = values.get("n_harmonics")
+    N = np.asarray(len(wns) if N is None else N).reshape(1, -1, 1, 1)
+    mu = np.asarray(values["mu"], dtype=float).reshape(1, 1, -1, 1)
+    Q = np.asarray(values["tangential_force"], dtype=float).reshape(1, 1, 1, -1)
+    domains = values.get("domain", "periodic")
+    for domain in np.atleast_1d(np.asarray(domains, dtype=object)):
+        try:
+            P = mean_pressure(a, amps, wns, periodic=domain == "periodic", n_harmonics=N) * pstar * lam
+        except ValueError:
+            return []                 # the harmonic table's own problems are reported elsewhere
+        over = Q > mu * P * (1.0 + 1e-12)
+        if over.any():
+            i = np.argwhere(np.broadcast_to(over, np.broadcast_shapes(over.shape, P.shape)))[0]
+            limit = float(np.broadcast_to(mu * P, over.shape)[tuple(i)])
+            return [f"tangential_force = {float(np.broadcast_to(Q, over.shape)[tuple(i)]):.6g} N/m exceeds mu P = "
+                    f"{limit:.6g} N/m (the onset of gross slip, domain = {domain!r}); allowed: [0, mu P]"]
+    return []
+
+
+def _complete(values: dict) -> None:
+    """Normalised mode with a depth: Poisson's ratio 0.3 unless given (sigma_yy and the invariants need it);
+    recipes without z keep their parameters (and content hash)."""
+    if "z" in values and "nu" not in values and "E" not in values:
+        values["nu"] = 0.3
+
+
 def _route(values: Mapping[str, Any], method: str, rtol: float) -> tuple[str, str]:
     """The route table's (route, accuracy) of the method, whatever the values (``physics.wavy.resolve``)."""
     from ..physics.wavy import resolve
 
-    return resolve(method, rtol)
+    below = values.get("z") is not None and method not in WAVY_APPROXIMATE_METHODS
+    return resolve(method, rtol, below=below)
 
 
 def _show(v):
@@ -249,7 +403,8 @@ WAVY = Scenario(
     summary="Rigid multisinusoidal wavy surface (periodic or single indenter) on an elastic half-plane in "
             "continuous contact: pressure, displacement, mean and peak pressure, validity of the contact model",
     references=REFERENCE, theory="wavy", parameters=PARAMETERS, variables=VARIABLES, evaluate=evaluate,
-    physical_switch="E", methods=WAVY_METHODS, check=check,
+    physical_switch="E", methods=WAVY_METHODS, check=check, complete=_complete,
+    default_variables=DEFAULTS,
     conventions="plane strain, frictionless; pressure positive in compression; u_z positive into the body",
     route=_route,
 )

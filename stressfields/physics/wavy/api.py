@@ -34,6 +34,7 @@ import numpy as np
 from . import nonperiodic, periodic
 from . import periodic as _periodic
 from . import profile as _profile
+from . import interior as _interior
 from . import series, validity
 
 DEFAULT_RTOL = 1e-12
@@ -61,6 +62,8 @@ class _Context:
             self.table = series.build_table(ua, uN, self.dr, self.n, is_periodic=False,
                                             rtol=rtol, max_terms=max_terms, weighted=weighted)
         self._outside = None
+        self.interior = None      # the periodic potential below the surface, built when first needed
+        self.rtol = rtol
 
     def info(self, shape, rows=None, err=None):
         rows = self.row if rows is None else rows
@@ -452,3 +455,233 @@ def _approximate(x_over_a, two_a, amplitudes, wavenumbers, n_harmonics, eq, n_te
             acc = j1(z) + 0.5 * np.cos((z + 1.0) * np.sin(s)) - 0.5 * j0(z + 1.0)
         out += np.where(N > i, 2.0 * c.dr[i] * c.n[i] * root * acc, 0.0)
     return np.where(np.abs(s) <= 1.0, out, 0.0)
+
+
+# ----------------------------------------------------------------------- below the surface
+
+#: the fields of ``subsurface`` (the stresses in p*, dpdz in p*/a, shear_traction q/p* at the surface)
+SUBSURFACE = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xz", "sigma_1", "sigma_2", "sigma_3", "tau_max",
+              "von_mises", "dpdz", "shear_traction")
+#: validity codes of the interior (docs/theory/wavy.md (W42)), beside those of (W25)
+DPDZ_UNDEFINED, STICK_NOT_ADMISSIBLE = 4, 5
+#: grid of the stick-width search (W43): P(c) tabulated on this many widths before bisection
+_STICK_GRID = 256
+
+
+def stick_half_width(two_a_over_lambda1, amplitudes, wavenumbers, fx, *, periodic: bool, n_harmonics=None):
+    """Stick half-width c/a of wavy partial slip (Ciavarella 1998, Jager 1997), docs/theory/wavy.md (W43):
+    the largest c <= a with P(c) = (1 - fx) P(a), P the load per period of the same profile at contact
+    half-width c (closed forms (W11)/(W12)), fx = Q/(mu P) in [0, 1].
+
+    Returns (c_over_a, admissible): admissible is False where P is not increasing on [c, a] (on the
+    search grid), so that the stick zone would not shrink monotonically under the growing load and
+    the superposition is not the solution of the loading history."""
+    fx = np.asarray(fx, dtype=float)
+    c = _ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, 1.0, 16, build=False)
+    a, N, fx = np.broadcast_arrays(c.a_in, c.N_in, fx)
+    P = lambda ang: c.mod.mean_pressure(ang, c.dr, c.n, N[..., None])
+    k = np.arange(1, _STICK_GRID + 1) / _STICK_GRID
+    grid = a[..., None] * k
+    Pg = P(grid)
+    target = (1.0 - fx) * Pg[..., -1]
+    below = Pg <= target[..., None]
+    # the largest grid width with P <= target: the root lies above it (P(a) >= target)
+    idx = np.where(below.any(axis=-1), _STICK_GRID - 1 - np.argmax(below[..., ::-1], axis=-1), -1)
+    lo = np.where(idx >= 0, np.take_along_axis(grid, np.maximum(idx, 0)[..., None], -1)[..., 0], 0.0)
+    hi = np.take_along_axis(grid, np.minimum(idx + 1, _STICK_GRID - 1)[..., None], -1)[..., 0]
+    for _ in range(64):
+        mid = 0.5 * (lo + hi)
+        low = P(mid[..., None])[..., 0] <= target
+        lo, hi = np.where(low, mid, lo), np.where(low, hi, mid)
+    cw = np.where(fx <= 0.0, a, np.where(fx >= 1.0, 0.0, 0.5 * (lo + hi)))
+    rising = np.diff(Pg, axis=-1) > 0.0
+    above = grid[..., :-1] >= cw[..., None] - a[..., None] / _STICK_GRID
+    admissible = np.all(rising | ~above, axis=-1)
+    return cw / a, admissible
+
+
+def _interior_ctx(two_a, amplitudes, wavenumbers, periodic_, n_harmonics, rtol, max_terms):
+    """The context of the potential: periodic, the closed form (W30) (its bound is the potential's own,
+    (W39)); non-periodic, the series truncated on the (2m + 1)-weighted tail at rtol/2, which bounds
+    z G' as the plain tail bounds G (W38), so that both together stay within rtol."""
+    if periodic_:
+        c = _ctx(two_a, amplitudes, wavenumbers, True, n_harmonics, rtol, max_terms)
+    else:
+        c = _ctx(two_a, amplitudes, wavenumbers, False, n_harmonics, 0.5 * rtol, max_terms, weighted=True)
+    c.rtol = rtol
+    return c
+
+
+def subsurface_bound(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None,
+                     rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """Per case, the bound (p* units) of the normal load's stresses below the surface at every depth:
+    periodic, the larger of the closed form's and the series' bounds at their switch (W39); single
+    indenter, the series tail and rounding of G plus the (2m + 1)-weighted one of z G' (W38)."""
+    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
+    if periodic:
+        c.interior = _interior.PeriodicPotential(c.table, c.dr, c.n, rtol)
+        return c.interior.err[c.row]
+    return (c.table.err + c.table.err_shape)[c.row]
+
+
+def _potential(c, row, t, zt):
+    """(G, dG/dt, err, converged) of the pressure of context c at x/a = t, z/a = zt > 0 for table rows
+    ``row`` (1-D arrays of one length), docs/theory/wavy.md (W37), (W38)."""
+    if c.periodic:
+        if c.interior is None:
+            c.interior = _interior.PeriodicPotential(c.table, c.dr, c.n, c.rtol)
+        G, Gt, err = c.interior.evaluate(row, t, zt)
+        return G, Gt, err, c.interior.converged[row]
+    G, Gt, e, es = _interior.nonperiodic_potential(c.table, row, t, zt)
+    return G, Gt, e + es, c.table.converged[row]
+
+
+def subsurface(names, x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+               n_harmonics=None, nu=0.3, mu=0.0, fx=0.0, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS,
+               surface_pressure=None):
+    """The plane-strain field at (x/a, z/a), z >= 0, docs/theory/wavy.md (W36)-(W43): the fields
+    ``names`` (of ``SUBSURFACE``) and an info dict.
+
+    Normal load: the pressure of the domain; tangential load fx = Q/(mu P) in [0, 1] along +x with
+    friction coefficient mu: the shear traction q = mu [p(x; a) - p(x; c)] of Ciavarella and Jager,
+    c from ``stick_half_width`` (uncoupled: the shear traction does not change the pressure).  At
+    z = 0 the surface values: sigma_zz = -p, sigma_xz = -q (``surface_pressure``: the caller's own
+    p/p* at these points, so that both agree to the bit; default: ``pressure``).  The mean pressure
+    acts at every depth (sigma_xx = sigma_zz = -p_inf as z -> inf, periodic; the k = 0 mode).
+    ``shear_traction`` is q/p* of the surface point above (x/a) (independent of z).
+
+    info: "error_estimate" per point (p* units, a bound of the stresses' error), "normal_error" its
+    part from the normal pressure (the whole under normal load), "converged" (every potential's own
+    bound within rtol: the stresses are then within (1 + 4 mu) rtol p*), "stick_over_a" and
+    "stick_admissible" per point's case,
+    "dpdz_undefined" per point (at z = 0 on a contact or stick edge the limit of dpdz depends on the
+    direction of approach).
+    """
+    names = tuple(names)
+    bad = [n for n in names if n not in SUBSURFACE]
+    if bad:
+        raise ValueError(f"unknown subsurface field(s) {bad}; allowed: {', '.join(SUBSURFACE)}")
+    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
+    t = np.asarray(x_over_a, dtype=float)
+    zt = np.asarray(z_over_a, dtype=float)
+    if np.any(~(zt >= 0.0)) or not np.all(np.isfinite(zt)):
+        raise ValueError("z_over_a must be finite and >= 0 (depth into the body)")
+    nu, mu, fx = (np.asarray(v, dtype=float) for v in (nu, mu, fx))
+    shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape, mu.shape, fx.shape)
+    t, zt, nu, mu, fx = (np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu, mu, fx))
+    row = np.broadcast_to(c.row, shape).reshape(-1)
+    a = np.broadcast_to(c.a_in, shape).reshape(-1)
+    N = np.broadcast_to(c.N_in, shape).reshape(-1)
+    shearing = mu * fx > 0.0
+    ratio, admissible = np.ones(t.shape), np.ones(t.shape, dtype=bool)
+    if shearing.any():              # one search per distinct case, not per point
+        keys = np.stack([a[shearing], N[shearing], fx[shearing]])
+        uniq, inv = np.unique(keys, axis=1, return_inverse=True)
+        r_u, ok_u = stick_half_width(uniq[0] / np.pi, amplitudes, wavenumbers, uniq[2], periodic=periodic,
+                                     n_harmonics=uniq[1].astype(int))
+        ratio[shearing], admissible[shearing] = r_u[inv.reshape(-1)], ok_u[inv.reshape(-1)]
+    sliding = shearing & (ratio > 0.0)           # a stick zone: the corrective term at width c
+    deep = zt > 0.0
+
+    # the potential of the full-width pressure and, under partial slip, of the stick-width one
+    # (at z = 0 the routes give the limit z -> 0+; G' is unbounded on the edges, where dpdz is flagged)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        G, Gt, err, conv = _potential(c, row, t, zt)
+    with np.errstate(invalid="ignore"):
+        H = np.where(shearing, mu * G, 0.0)
+        Ht = np.where(shearing, mu * Gt, 0.0)
+    err_h = np.where(shearing, mu * err, 0.0)
+    if sliding.any():
+        cc = _interior_ctx(a[sliding] / np.pi * ratio[sliding], amplitudes, wavenumbers, periodic, N[sliding], rtol,
+                           max_terms)
+        k = 1.0 / ratio[sliding]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            Gc, Gct, ec, okc = _potential(cc, cc.row, t[sliding] * k, zt[sliding] * k)
+        H[sliding] -= mu[sliding] * Gc
+        Ht[sliding] -= mu[sliding] * k * Gct
+        err_h[sliding] += mu[sliding] * ec
+        conv[sliding] &= okc
+    normal_err = err
+    err = err + 2.0 * err_h                      # sigma_xx carries 2 Re H: within (1 + 4 mu) of the bounds
+    with np.errstate(invalid="ignore"):
+        sxx, szz, sxz = _interior.normal_stresses(G, Gt, zt)
+        txx, tzz, txz = _interior.shear_stresses(H, Ht, zt)
+        sxx, szz, sxz = sxx + txx, szz + tzz, sxz + txz
+        dpdz = -(2.0 / 3.0) * (1.0 + nu) * (Gt.real + Ht.imag)
+
+    surf = ~deep
+    q = None
+    if surf.any() or "shear_traction" in names:
+        p = (pressure(t, a / np.pi, amplitudes, wavenumbers, periodic=periodic, n_harmonics=N, rtol=rtol,
+                      max_terms=max_terms)[0] if surface_pressure is None
+             else np.broadcast_to(surface_pressure, shape).reshape(-1))
+        q = np.where(shearing, mu * p, 0.0)
+        if sliding.any():
+            pc = pressure(t[sliding] / ratio[sliding], a[sliding] / np.pi * ratio[sliding], amplitudes,
+                          wavenumbers, periodic=periodic, n_harmonics=N[sliding], rtol=rtol, max_terms=max_terms)[0]
+            q[sliding] -= mu[sliding] * pc
+        # at z = 0: sigma_zz = -p, sigma_xz = -q exactly; sigma_xx = -p - 2 Re H (the Hilbert transform of q)
+        sxx = np.where(surf, -p - 2.0 * H.real, sxx)
+        szz = np.where(surf, 0.0 - p, szz)         # -p, with +0 where p = 0
+        sxz = np.where(surf, -q, sxz)
+    # on a contact edge (and under partial slip a stick edge) G' is unbounded at z = 0
+    undefined = surf & ~np.isfinite(dpdz)
+    dpdz = np.where(undefined, np.nan, dpdz)
+    syy, s1, s2, s3, tau, vm = _interior.plane_strain_invariants(sxx, szz, sxz, nu)
+    values = dict(sigma_xx=sxx, sigma_yy=syy, sigma_zz=szz, sigma_xz=sxz, sigma_1=s1, sigma_2=s2, sigma_3=s3,
+                  tau_max=tau, von_mises=vm, dpdz=dpdz, shear_traction=q)
+    info = {"error_estimate": err, "normal_error": normal_err, "converged": conv, "stick_over_a": ratio,
+            "stick_admissible": admissible | ~shearing, "dpdz_undefined": undefined}
+    shaped = lambda v: np.asarray(v).reshape(shape)
+    return {n: shaped(values[n]) for n in names}, {k: shaped(v) for k, v in info.items()}
+
+
+#: the peak search (W44): a grid of _PEAK_GRID^2 points over the box, then _PEAK_ROUNDS zooms by 4 of a
+#: 9 x 9 grid around the best point (spacing 2.5e-2/4^16 ~ 6e-12 of the box: the value's error is
+#: second order in the position's)
+_PEAK_GRID, _PEAK_ROUNDS = 41, 16
+PEAK_DEPTH = 3.0
+
+
+def subsurface_peaks(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool, n_harmonics=None, nu=0.3,
+                     mu=0.0, fx=0.0, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """Per case, the largest tau_max and von Mises over 0 <= z/a <= 3 and |x|/a <= 2 (periodic: at most
+    half a period; x >= 0 under normal load, by symmetry) and where they sit, docs/theory/wavy.md (W44).
+
+    Returns {"tau_max": (value, x/a, z/a), "von_mises": (...), "on_border": bool} per case (shape of
+    broadcast(two_a_over_lambda1, n_harmonics, nu, mu, fx)); on_border: the best point of a search
+    lies on the border of the box (|x| at its limit or z/a = 3), so it may not be the peak."""
+    w = np.asarray(two_a_over_lambda1, dtype=float)
+    N = np.asarray(len(np.atleast_1d(wavenumbers)) if n_harmonics is None else n_harmonics)
+    shape = np.broadcast_shapes(w.shape, N.shape, np.shape(nu), np.shape(mu), np.shape(fx))
+    cases = [np.broadcast_to(v, shape).reshape(-1) for v in (w, N, nu, mu, fx)]
+    out = {k: (np.zeros(shape), np.zeros(shape), np.zeros(shape)) for k in ("tau_max", "von_mises")}
+    border = np.zeros(shape, dtype=bool)
+    for i, (wi, Ni, nui, mui, fxi) in enumerate(zip(*cases)):
+        xmax = min(2.0, 1.0 / wi) if periodic else 2.0
+        xmin = -xmax if mui * fxi > 0.0 else 0.0
+        for name in ("tau_max", "von_mises"):
+            def f(x, z):
+                return subsurface((name,), x, z, wi, amplitudes, wavenumbers, periodic=periodic, n_harmonics=Ni,
+                                  nu=nui, mu=mui, fx=fxi, rtol=rtol, max_terms=max_terms)[0][name]
+            xs = np.linspace(xmin, xmax, _PEAK_GRID)
+            zs = np.linspace(0.0, PEAK_DEPTH, _PEAK_GRID)
+            X, Z = np.meshgrid(xs, zs, indexing="ij")
+            v = np.nan_to_num(f(X, Z), nan=-np.inf)
+            k = np.unravel_index(np.argmax(v), v.shape)
+            x0, z0, best = xs[k[0]], zs[k[1]], v[k]
+            hx, hz = xs[1] - xs[0], zs[1] - zs[0]
+            for _ in range(_PEAK_ROUNDS):
+                gx = np.clip(x0 + hx * np.linspace(-1.0, 1.0, 9), xmin, xmax)
+                gz = np.clip(z0 + hz * np.linspace(-1.0, 1.0, 9), 0.0, PEAK_DEPTH)
+                X, Z = np.meshgrid(gx, gz, indexing="ij")
+                v = np.nan_to_num(f(X, Z), nan=-np.inf)
+                k = np.unravel_index(np.argmax(v), v.shape)
+                if v[k] >= best:
+                    x0, z0, best = gx[k[0]], gz[k[1]], v[k]
+                hx, hz = hx / 4.0, hz / 4.0
+            flat = np.unravel_index(i, shape)
+            for arr, val in zip(out[name], (best, x0, z0)):
+                arr[flat] = val
+            border[flat] |= (abs(x0) >= xmax) or (z0 >= PEAK_DEPTH)
+    return {**out, "on_border": border}

@@ -20,14 +20,19 @@ POINTWISE: tuple[str, ...] = ("pressure", "uz", "validity")
 PER_CASE: tuple[str, ...] = ("mean_pressure", "peak_pressure", "max_pressure", "max_pressure_x",
                              "continuous_contact", "johnson_parameter", "n_terms", "periodic_correction",
                              "error_estimate", "converged")
-FIELDS: tuple[str, ...] = POINTWISE + PER_CASE
+#: below the surface (pointwise, with the depth and the tangential load) and their per-case peaks
+INTERIOR: tuple[str, ...] = api.SUBSURFACE
+LOADED: tuple[str, ...] = ("stick_half_width", "tau_max_peak", "tau_max_peak_x", "tau_max_peak_depth",
+                           "von_mises_peak", "von_mises_peak_x", "von_mises_peak_depth", "peak_validity")
+FIELDS: tuple[str, ...] = POINTWISE + PER_CASE + INTERIOR + LOADED
 _PEAK = ("validity", "peak_pressure", "n_terms", "error_estimate", "converged")
 
 
 def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayLike, amplitudes: ArrayLike,
            wavenumbers: ArrayLike, *, periodic: bool, n_harmonics: ArrayLike | None = None, method: str = "auto",
            rtol: float = DEFAULT_RTOL, max_terms: int = DEFAULT_MAX_TERMS,
-           contact_points: ArrayLike | None = None) -> dict[str, np.ndarray]:
+           contact_points: ArrayLike | None = None, z_over_a: ArrayLike = 0.0, nu: ArrayLike = 0.3,
+           mu: ArrayLike = 0.0, fx: ArrayLike = 0.0, below: bool = False) -> dict[str, np.ndarray]:
     """The requested quantities of one domain, normalised as in docs/theory/wavy.md (W2).
 
     Arguments as in ``api`` (x_over_a = x/a, the harmonic table, ``periodic`` for the periodic
@@ -50,7 +55,15 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
       whether rtol was met, (W22), (W23);
     * periodic_correction -- bound on max |p_periodic - p_nonperiodic|/p* over the contact, (W26);
     * validity -- int8 per point, (W25): 0 series converged, 1 not converged, 2 approximate formula,
-      3 pressure taken from the non-periodic series (only where ``pressure`` is among ``names``).
+      3 pressure taken from the non-periodic series (only where ``pressure`` is among ``names``);
+      with fields below the surface also (W42): 1 where their bound exceeds rtol, 4 dpdz undefined at
+      a surface edge, 5 partial slip whose stick zone is not admissible;
+    * ``below``: the caller evaluates the field below the surface (at any of its points), so that
+      error_estimate bounds the stresses too, whichever fields this call computes (W39);
+    * sigma_xx ... dpdz, shear_traction -- at depth z_over_a = z/a (plane strain with Poisson's ratio
+      nu; tangential load fx = Q/(mu P) with friction coefficient mu), ``api.subsurface``, (W36)-(W43);
+      stick_half_width (c/a) and the peaks of tau_max and von Mises with their positions (x/a, z/a),
+      ``api.subsurface_peaks`` (W44); peak_validity 4 where a search ended on its box's border.
 
     Per-contact quantities have the shape of broadcast(two_a_over_lambda1, n_harmonics), pointwise
     ones that broadcast with x_over_a.  Pure NumPy/SciPy, no state.
@@ -60,6 +73,9 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
     if unknown:
         raise ValueError(f"unknown wavy field(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(FIELDS)}")
     approx = approximation(method)
+    if approx is not None and (wanted_interior := set(names) & set(INTERIOR + LOADED)):
+        raise ValueError(f"method {method!r} replaces the pressure only; the field below the surface "
+                         f"({', '.join(sorted(wanted_interior))}) needs an exact method")
     if approx is not None and periodic:
         raise ValueError(f"method {method!r} is the paper's approximation for a non-periodic indenter; "
                          "it needs periodic=False")
@@ -78,6 +94,24 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
                                        contact_points=contact_points)
             out["pressure"] = value
             substituted = info.get("substituted", np.False_)
+    interior = wanted.intersection(INTERIOR)
+    if interior:
+        surface = out["pressure"] if "pressure" in out else (
+            api.pressure(x_over_a, *table, **series, substitute=substitutes(method), contact_points=contact_points)[0]
+            if approx is None else None)
+        values, sub = api.subsurface(tuple(n for n in names if n in INTERIOR), x_over_a, z_over_a, *table, **series,
+                                     nu=nu, mu=mu, fx=fx, surface_pressure=surface)
+        out.update(values)
+    loaded = dict(periodic=periodic, n_harmonics=n_harmonics)
+    if "stick_half_width" in wanted:
+        out["stick_half_width"] = api.stick_half_width(two_a_over_lambda1, amplitudes, wavenumbers,
+                                                       np.where(np.asarray(mu) > 0, fx, 0.0), **loaded)[0]
+    if wanted.intersection(LOADED[1:]):
+        pk = api.subsurface_peaks(*table, **series, nu=nu, mu=mu, fx=fx)
+        for name in ("tau_max", "von_mises"):
+            out.update({f"{name}_peak": pk[name][0], f"{name}_peak_x": pk[name][1],
+                        f"{name}_peak_depth": pk[name][2]})
+        out["peak_validity"] = np.where(pk["on_border"], 4, 0).astype(np.int8)
     if "uz" in wanted:
         out["uz"] = api.displacement(x_over_a, *table, **series)[0]
     if wanted.intersection(_PEAK):
@@ -85,8 +119,17 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
         out.update(peak_pressure=p0, n_terms=info["n_terms"], error_estimate=info["error_estimate"],
                    converged=info["converged"].astype(np.int8))
         if "validity" in wanted:
-            out["validity"] = (np.int8(2) if approx is not None else
-                               np.where(info["converged"], np.where(substituted, 3, 0), 1).astype(np.int8))
+            v = (np.int8(2) if approx is not None else
+                 np.where(info["converged"], np.where(substituted, 3, 0), 1).astype(np.int8))
+            if interior:
+                v = np.where(sub["converged"], v, 1)
+                if "dpdz" in interior:
+                    v = np.where(sub["dpdz_undefined"], api.DPDZ_UNDEFINED, v)
+                v = np.where(sub["stick_admissible"], v, api.STICK_NOT_ADMISSIBLE).astype(np.int8)
+            out["validity"] = v
+        if below and approx is None:
+            # the per-case bound covers the stresses of the normal load as well (W38), (W39)
+            out["error_estimate"] = np.maximum(out["error_estimate"], api.subsurface_bound(*table, **series))
     if "mean_pressure" in wanted:
         out["mean_pressure"] = api.mean_pressure(*table, **exact)
     if wanted.intersection(("max_pressure", "max_pressure_x")):

@@ -274,13 +274,23 @@ def legendre_by_cosines(a, top):
     former bound of (W31) at n = 58).  Bound per value, u = eps/2:
     u [sum_j G_kj |sin(j a)| j a + k/2 + 9] (cosine argument and 1 ulp, weights 3u, k/2 + 1 sums).
     """
+    return cosine_sums(a, _central(top), normalised=True)
+
+
+def cosine_sums(a, g, *, normalised=False):
+    """sum_m g_m g_{k-m} cos((k - 2m) a) for k < len(g) (columns), rows of a, and a bound of each
+    value's rounding error: u [sum_j |G_kj| (|sin(j a)| j a + k/2 + 9)] with G_kj the weights of
+    cos(j a), u = eps/2 (the bound of (W35), which has sum_j G_kj = 1).  The coefficients of
+    (sum_m g_m e^{ima} w^m)(sum_m g_m e^{-ima} w^m): with g_m = binom(2m, m)/4^m the Legendre
+    generating function (W35) (``normalised``: the weights of each k sum to 1, as (W35) counts them);
+    with the coefficients of sqrt(1 - u) those of sqrt(1 - 2 w cos a + w^2), docs/theory/wavy.md (W40)."""
     a = np.asarray(a, dtype=float).reshape(-1)
-    g = _central(top)
+    top = len(g)
     j = np.arange(top)
     ja = j[None, :] * a[:, None]
     cosj = np.cos(ja)
     arg = np.abs(np.sin(ja)) * ja
-    P, A = np.zeros((a.size, top)), np.zeros((a.size, top))
+    P, A, W = np.zeros((a.size, top)), np.zeros((a.size, top)), np.zeros((1, top))
     # added in order of the cosine index j for every k (not a matrix product, whose grouping follows
     # the number of rows): a value does not depend on the other angles or on top
     for jj in range(top):
@@ -288,8 +298,9 @@ def legendre_by_cosines(a, top):
         m = (k - jj) // 2
         weight = g[m] * g[k - m] * (2.0 if jj > 0 else 1.0)
         P[:, k] += cosj[:, jj:jj + 1] * weight[None, :]
-        A[:, k] += arg[:, jj:jj + 1] * weight[None, :]
-    E = _U * (A + 0.5 * j[None, :] + 9.0)
+        A[:, k] += arg[:, jj:jj + 1] * np.abs(weight)[None, :]
+        W[:, k] += np.abs(weight)[None, :]
+    E = _U * (A + (1.0 if normalised else W) * (0.5 * j[None, :] + 9.0))
     return P, E
 
 

@@ -10,8 +10,16 @@ The one place that says which computation a method name selects (docs/theory/wav
 * ``approximate_eq18`` / ``approximate_eq20`` -- the pressure only by the paper's approximate
   formulas (W29), non-periodic only, inaccurate (validity = 2).
 
+Below the surface (``resolve(..., below=True)``), for every exact method:
+
+* ``potential`` -- the plane-strain field from the complex potential of the surface tractions
+  (W36)-(W41): periodic, the closed finite form (W37) near the surface and the Taylor series of S(w)
+  at depth, switched per contact where their bounds meet (W39); single indenter, the series in omega
+  (W38) of the surface series' length (tail bounds unchanged); partial slip by the same potential
+  at the stick width (W41), (W43).
+
 ``resolve`` gives the route and accuracy strings written into every file's attributes; they must
-not change.
+not change (the surface ones: recipes without z keep their strings).
 """
 from __future__ import annotations
 
@@ -39,6 +47,15 @@ _AUTO_ROUTE = ("; auto: pressure of a narrow periodic contact by the non-periodi
                "correction is below rtol (validity = 3)")
 
 
+_BELOW_ROUTE = ("; below the surface: complex potential of the surface tractions (docs/theory/wavy.md (W36)-(W41)), "
+                "periodic closed finite form near the surface and Taylor series in w at depth, switched a priori by "
+                "their bounds (W39); single indenter, the series in omega (W38)")
+_BELOW_ACCURACY = ("; stresses below the surface: |error| <= error_estimate <= rtol * p* under normal load "
+                   "(closed-form "
+                   "rounding and series truncation bounds, (W38), (W39)), (1 + 4 mu) of it under partial slip; dpdz "
+                   "not bounded")
+
+
 def approximation(method: str) -> Callable[..., np.ndarray] | None:
     """The approximate-pressure kernel a method selects, or None for the exact series methods."""
     return APPROXIMATE.get(_known(method))
@@ -50,8 +67,15 @@ def substitutes(method: str) -> bool:
     return _known(method) == "auto"
 
 
-def resolve(method: str, rtol: float) -> tuple[str, str]:
-    """(route, accuracy) of a method at tolerance rtol, as written into every field's attributes."""
+def resolve(method: str, rtol: float, *, below: bool = False) -> tuple[str, str]:
+    """(route, accuracy) of a method at tolerance rtol, as written into every field's attributes;
+    ``below``: the recipe asks for the field below the surface (exact methods only, (W36)-(W44))."""
+    if below:
+        route, accuracy = resolve(method, rtol)
+        if approximation(method) is not None:
+            raise ValueError(f"method {method!r} replaces the pressure only; below the surface use "
+                             f"{', '.join(SERIES_METHODS)}")
+        return route + _BELOW_ROUTE, accuracy + _BELOW_ACCURACY
     if approximation(method) is not None:
         return (f"the paper's approximate {method.removeprefix('approximate_')} (inaccurate; for comparison only)",
                 "not controlled: see the exact series")

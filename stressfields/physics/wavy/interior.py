@@ -1,0 +1,259 @@
+"""The plane-strain field below a wavy contact: the complex potential of the surface tractions,
+docs/theory/wavy.md (W36)-(W42).
+
+With zeta = x + i z (z depth, x and z in units of the contact half-width a here) and
+G(zeta) = (1/pi) int p(s)/(zeta - s) ds the Cauchy potential of the pressure (periodic surface: the
+cot kernel), the stresses of the normal load are (W36)
+
+    sigma_xx = Im G + z Re G',   sigma_zz = Im G - z Re G',   sigma_xz = -z Im G',
+
+and those of a shear traction q with potential H = (1/pi) int q(s)/(zeta - s) ds (W41)
+
+    sigma_xx = -2 Re H + z Im H',   sigma_zz = -z Im H',   sigma_xz = Im H + z Re H'.
+
+G is evaluated without quadrature:
+
+* non-periodic, (W38): p/p* = sum_m D_m sin((2m + 1) theta) = sqrt(1 - t^2) sum_m D_m U_2m(t) gives
+  G = sum_m D_m omega^(2m + 1), omega = 1/(Z + sqrt(Z - 1) sqrt(Z + 1)), Z = zeta/a, |omega| < 1 in the
+  body: the surface series of the same length, whose error bound holds unchanged (|omega| <= 1);
+* periodic, (W37): G = -i S(w), w = e^{i zeta a} (lambda_1 = 2 pi), S(w) = p_inf + 2 sum_k p_k w^k with p_k
+  the cosine coefficients of p; near the surface by the closed finite form
+  S = F - sum_k f_{-k} (w^{-k} - w^k), F = X T/4 with X = sqrt(1 - w e^{-ia}) sqrt(1 - w e^{ia}) and
+  T = sum_j B_j (w^j + w^{-j-1}) of (W30); at depth, where the poles' cancellation would cost digits,
+  by the Taylor series of S, whose length is chosen a priori from a bound (W39).
+
+Pure NumPy; coordinates broadcast with the table rows of ``api``'s context.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from . import periodic as _periodic
+from . import series
+
+_U = 0.5 * series.EPS
+#: longest Taylor series of S (periodic, at depth); beyond it the rows are flagged not converged
+MAX_SERIES = 4096
+
+
+def _sqrt1m_coefficients(top):
+    """h_m, m < top: sqrt(1 - u) = sum_m h_m u^m (h_0 = 1, h_m = -binom(2m, m)/(4^m (2m - 1)))."""
+    g = _periodic._central(top)
+    m = np.arange(top)
+    return np.where(m == 0, 1.0, -g / np.where(m == 0, 1.0, 2.0 * m - 1.0))
+
+
+class PeriodicPotential:
+    """The periodic potential S(w) of every row of a closed-form table (W37), (W39).
+
+    Per row: the principal-part coefficients f_{-k} (k = 1 .. K) of F at w = 0, the Taylor
+    coefficients s_m of S (m < M), the depth z_switch (kernel units) below which the closed form is
+    used and above which the series of M terms, and the bound ``err`` of the stresses (p* units)
+    either way."""
+
+    def __init__(self, table, dr, n, rtol):
+        self.table = table
+        a, N, K = table.a, table.N, table.K
+        R = a.size
+        B, errB = _periodic.closed_coefficients(a, dr, n, N, bound=True)
+        B = B[:, : table.D.shape[1]]
+        errB = errB[:, : table.D.shape[1]]
+        Kmax = B.shape[1]
+        absB = np.abs(B)
+        sumB = series.row_sum(absB)
+        # |s_m| = (1/pi)|int p cos(m s) ds| <= (2a/pi) max|p|, max|p| <= sin(a/2) sum|B_j| (W39)
+        beta = 2.0 * a / np.pi * np.sin(0.5 * a) * sumB
+        tol = 0.5 * rtol
+        # closed-form rounding bound as a function of depth (kernel units), (W39)
+        j = np.arange(Kmax)
+
+        def closed_bound(Z, pole):
+            # B_j w^{-j-1} by j + 1 products ((j + 2) u of its size |B_j| e^{(j+1)Z}), times X (|X| <= 2,
+            # a few u) and, for z G', by its weight j + 1 and by z/|1 - w e^{-+ia}| <= 1 + Z (W39); the poles
+            # likewise; the coefficients' own errors errB carried by the largest power
+            grow = (j + 2.0) * (j + 3.0) * np.exp((j + 1.0) * Z[:, None])
+            return 2.0 * _U * (1.0 + Z) * (series.row_dot(absB * grow, np.ones(Kmax))
+                                            + series.row_dot(np.abs(pole) * grow, np.ones(Kmax))) \
+                + 2.0 * series.row_sum(errB) * (1.0 + Z) * np.exp(K * Z)
+
+        # the principal part needs x_k up to K; the Taylor coefficients up to M + K + 1
+        h = _sqrt1m_coefficients(2 * Kmax + 2)
+        x, ex = _periodic.cosine_sums(a, h)
+        pole = np.zeros((R, Kmax))                    # pole[:, k - 1] = f_{-k}
+        for jj in range(Kmax):
+            for k in range(1, jj + 2):                # f_{-k} = 1/4 sum_{j >= k - 1} B_j x_{j + 1 - k}
+                pole[:, k - 1] += 0.25 * B[:, jj] * x[:, jj + 1 - k]
+        # the switch: the largest depth at which the closed form's bound is within tol (bisection)
+        lo, hi = np.zeros(R), np.full(R, 40.0)
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            ok = closed_bound(mid, pole) <= tol
+            lo, hi = np.where(ok, mid, lo), np.where(ok, hi, mid)
+        # where even the surface misses tol (rtol near rounding), the switch balances the closed form's
+        # bound against that of the longest series, so neither is used where the other is better
+        cap = lambda Z: beta * np.exp(-MAX_SERIES * Z) * (1.0 + Z * MAX_SERIES) / (1.0 - np.exp(-Z)) ** 2
+        blo, bhi = np.full(R, 1e-6), np.full(R, 40.0)
+        for _ in range(60):
+            mid = 0.5 * (blo + bhi)
+            closer = closed_bound(mid, pole) <= cap(mid)
+            blo, bhi = np.where(closer, mid, blo), np.where(closer, bhi, mid)
+        Zs = np.where(lo > 0.0, np.maximum(lo, 1e-6), blo)
+        q = np.exp(-Zs)
+        # series length: truncation of Im G plus z |G'| at Z >= Zs (decreasing there once M Zs >= 1)
+        M = np.full(R, MAX_SERIES)
+        Mgrid = np.arange(1, MAX_SERIES + 1)[None, :]
+        with np.errstate(under="ignore", over="ignore", invalid="ignore"):
+            qM = q[:, None] ** Mgrid
+            trunc = beta[:, None] * qM * (1.0 / (1.0 - q[:, None])
+                                          + Zs[:, None] * (Mgrid * (1.0 - q[:, None]) + q[:, None])
+                                          / (1.0 - q[:, None]) ** 2)
+        good = (trunc <= 0.5 * tol) & (Mgrid * Zs[:, None] >= 1.0)
+        M = np.where(good.any(axis=1), 1 + np.argmax(good, axis=1), MAX_SERIES)
+        self.M = M
+        Mmax = int(M.max())
+        h = _sqrt1m_coefficients(Mmax + 2 * Kmax + 2)
+        x, ex = _periodic.cosine_sums(a, h)
+        s = np.zeros((R, Mmax))
+        for jj in range(Kmax):                        # f_m = 1/4 sum_j B_j (x_{m-j} + x_{m+j+1})
+            mm = np.arange(Mmax)
+            lo_ok = mm - jj >= 0
+            s[:, lo_ok] += 0.25 * B[:, jj:jj + 1] * x[:, (mm - jj)[lo_ok]]
+            s += 0.25 * B[:, jj:jj + 1] * x[:, mm + jj + 1]
+        s[:, 1:Kmax + 1] += pole[:, : min(Kmax, Mmax - 1)] if Mmax > Kmax else pole[:, : Mmax - 1]
+        s[np.arange(Mmax)[None, :] >= M[:, None]] = 0.0
+        self.s, self.pole, self.B = s, pole, B
+        # rounding of the series: coefficients (x_k bound ex, B_j bound errB, 2K + 4 operations) and
+        # Horner's (m + 2) u per term, at the switch depth where it is largest
+        xmax = np.max(np.abs(x), axis=1)
+        ds = 0.5 * (sumB * np.max(ex, axis=1) + series.row_sum(errB) * xmax) + (2 * K + 4) * _U * sumB * xmax
+        mm = np.arange(Mmax)[None, :]
+        with np.errstate(under="ignore"):
+            qm = q[:, None] ** mm
+        series_round = series.row_dot((ds[:, None] + 4.0 * _U * np.abs(s) * (mm + 2.0))
+                                      * qm * (1.0 + Zs[:, None] * mm), np.ones(Mmax))
+        trunc_M = np.take_along_axis(np.concatenate([trunc, trunc[:, -1:]], axis=1), (M - 1)[:, None], 1)[:, 0]
+        self.z_switch = Zs
+        self.err = np.maximum(closed_bound(Zs, pole), trunc_M + series_round)
+        self.converged = self.err <= rtol
+
+    def evaluate(self, row, t, zt):
+        """(G, dG/dt, err) at x/a = t, z/a = zt > 0 for table rows ``row`` (1-D arrays of one length);
+        dG/dt is the derivative along x/a (user units)."""
+        a = self.table.a[row]
+        Xk, Z = _folded(t, a), a * zt
+        deep = Z > self.z_switch[row]
+        G = np.empty(t.shape, complex)
+        Gt = np.empty(t.shape, complex)
+        # one row at a time: its coefficients are then scalars, not gathered per point
+        for r in np.unique(row):
+            one = row == r
+            for sel, route in ((one & ~deep, self._closed), (one & deep, self._series)):
+                if sel.any():
+                    G[sel], Gt[sel] = route(int(r), t[sel], Xk[sel], Z[sel])
+        return G, Gt, self.err[row]
+
+    def _closed(self, row, t, X, Z):
+        """The closed finite form near the surface (W37): S = X T/4 - sum_k f_{-k} (w^{-k} - w^k), one row."""
+        a = self.table.a[row]
+        far = np.abs(t * a) > np.pi           # folded points: v = X -+ a from the folded X
+        vm = np.where(far, X - a, a * (t - 1.0))
+        vp = np.where(far, X + a, a * (t + 1.0))
+        em = np.expm1(-Z)
+        ez = np.exp(-Z)
+        # 1 - w e^{-+ia} = -(e^{-Z + i v} - 1), written without cancellation next to the edges
+        d1 = -(em * np.cos(vm) - 2.0 * np.sin(0.5 * vm) ** 2 + 1j * ez * np.sin(vm))
+        d2 = -(em * np.cos(vp) - 2.0 * np.sin(0.5 * vp) ** 2 + 1j * ez * np.sin(vp))
+        Xr = np.sqrt(d1) * np.sqrt(d2)        # principal roots: the cuts run outward from e^{+-ia}
+        w = ez * (np.cos(X) + 1j * np.sin(X))
+        wi = np.exp(Z) * (np.cos(X) - 1j * np.sin(X))
+        T = np.zeros(t.shape, complex)
+        wT = np.zeros(t.shape, complex)         # w T'(w)
+        Pole = np.zeros(t.shape, complex)
+        wPole = np.zeros(t.shape, complex)      # w d/dw of the pole part
+        wj, wij = np.ones(t.shape, complex), wi.copy()       # w^j, w^{-j-1}
+        for j in range(int(self.table.K[row])):
+            b = self.B[row, j]
+            f = self.pole[row, j]               # f_{-(j+1)}
+            T += b * (wj + wij)
+            wT += b * (j * wj - (j + 1) * wij)
+            wk = wj * w                         # w^{j+1}
+            Pole += f * (wij - wk)
+            wPole += f * (-(j + 1)) * (wij + wk)
+            wj, wij = wk, wij * wi
+        # w X'/X = -(1/2) [w e^{-ia}/(1 - w e^{-ia}) + w e^{ia}/(1 - w e^{ia})]
+        we1 = 1.0 - d1
+        we2 = 1.0 - d2
+        wXp = -0.5 * Xr * (we1 / d1 + we2 / d2)
+        S = 0.25 * Xr * T - Pole
+        wS = 0.25 * (wXp * T + Xr * wT) - wPole
+        return -1j * S, a * wS
+
+    def _series(self, row, t, X, Z):
+        """The Taylor series of S at depth (W39), Horner in w, one row."""
+        a = self.table.a[row]
+        w = np.exp(-Z) * (np.cos(X) + 1j * np.sin(X))
+        S = np.zeros(X.shape, complex)
+        wS = np.zeros(X.shape, complex)
+        for m in range(int(self.M[row]) - 1, -1, -1):
+            c = self.s[row, m]
+            S = S * w + c
+            wS = wS * w + m * c
+        return -1j * S, a * wS
+
+
+def _folded(t, a):
+    """x in kernel units folded into one period where |x| > pi (as ``api._reduced``), signed."""
+    X = t * a
+    k = np.round(X / (2.0 * np.pi))
+    return np.where(np.abs(X) > np.pi, X - k * (2.0 * np.pi), X)
+
+
+def nonperiodic_potential(table, row, t, zt):
+    """(G, dG/dt, err_G, err_zG') of the single indenter at x/a = t, z/a = zt > 0, (W38):
+    G = sum_m D_m omega^(2m + 1), dG/dt = -(1/r) sum_m (2m + 1) D_m omega^(2m + 1), r = sqrt(Z - 1) sqrt(Z + 1)
+    (factorised principal roots: no cut in the body), omega = 1/(Z + r) (no cancellation as |Z| grows).
+    Errors: the surface series' bounds, since |omega| <= 1 and z/|r| <= 1."""
+    Z1 = (t - 1.0) + 1j * zt
+    Z2 = (t + 1.0) + 1j * zt
+    r = np.sqrt(Z1) * np.sqrt(Z2)
+    om = 1.0 / ((t + 1j * zt) + r)
+    om2 = om * om
+    G = np.zeros(t.shape, complex)
+    Gw = np.zeros(t.shape, complex)
+    for one in np.unique(row):                # one row at a time: scalar coefficients, its own length
+        sel = row == one
+        g, gw, o2 = np.zeros(sel.sum(), complex), np.zeros(sel.sum(), complex), om2[sel]
+        for m in range(int(table.K[one]) - 1, -1, -1):
+            c = table.D[one, m]
+            g = g * o2 + c
+            gw = gw * o2 + (2.0 * m + 1.0) * c
+        G[sel], Gw[sel] = g, gw
+    return G * om, -(Gw * om) / r, table.err[row], table.err_shape[row]
+
+
+def normal_stresses(G, Gt, zt):
+    """sigma_xx, sigma_zz, sigma_xz of the normal pressure from its potential (W36)."""
+    E = zt * Gt
+    return G.imag + E.real, G.imag - E.real, -E.imag
+
+
+def shear_stresses(H, Ht, zt):
+    """sigma_xx, sigma_zz, sigma_xz of a shear traction q (along +x on the body) from its potential
+    H = (1/pi) int q/(zeta - s) ds, (W41)."""
+    E = zt * Ht
+    return -2.0 * H.real + E.imag, -E.imag, H.imag + E.real
+
+
+def plane_strain_invariants(sxx, szz, sxz, nu):
+    """sigma_yy = nu (sigma_xx + sigma_zz) and, from the in-plane principal stresses
+    c +- hypot((sxx - szz)/2, sxz) and sigma_yy: sigma_1 >= sigma_2 >= sigma_3, tau_max = (sigma_1 - sigma_3)/2
+    and von Mises sqrt(3 J2) (docs/theory/wavy.md (W36))."""
+    syy = nu * (sxx + szz)
+    c = 0.5 * (sxx + szz)
+    R = np.hypot(0.5 * (sxx - szz), sxz)
+    hi, lo = c + R, c - R
+    s1 = np.maximum(hi, syy)
+    s3 = np.minimum(lo, syy)
+    s2 = np.maximum(np.minimum(hi, syy), lo)
+    vm = np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxz * sxz)
+    return syy, s1, s2, s3, 0.5 * (s1 - s3), vm

@@ -1,0 +1,103 @@
+"""Scenario `wavy` below the surface: depth z, partial slip, peaks, [points], physical units and the
+refusals, end to end against direct physics calls and the surface values."""
+import math
+
+import numpy as np
+import pytest
+
+import stressfields as sf
+from stressfields.physics.wavy import api
+
+from test_scenario_wavy import _exit_2
+
+F2 = {"amplitudes": [1.0, 0.02], "wavenumbers": [1, 11]}
+STRESS = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xz", "tau_max", "von_mises", "dpdz")
+
+
+def generate(params, **top):
+    return sf.generate({"scenario": "wavy", "parameters": {**F2, "a": 0.6, **params}, **top}).compute()
+
+
+def test_depth_is_a_dimension_with_the_surface_at_z_0():
+    ds = generate({"domain": ["periodic", "nonperiodic"], "x": {"start": -1.5, "stop": 1.5, "num": 13},
+                   "z": [0.0, 0.05, 1.0]})
+    assert ds.sigma_zz.dims == ("domain", "z", "x") and ds.pressure.dims == ("domain", "x")
+    assert float(ds.nu) == 0.3                      # normalised mode with z: the default, recorded
+    for name in STRESS:
+        assert name in ds
+    np.testing.assert_array_equal(ds.sigma_zz.sel(z=0.0), 0.0 - ds.pressure)
+    np.testing.assert_array_equal(ds.sigma_xz.sel(z=0.0), 0.0 * ds.pressure)
+    assert (ds.validity.sel(z=[0.05, 1.0]) == 0).all()
+    # the edges x = +-1 at z = 0: dpdz has a direction-dependent limit there
+    edge = ds.sel(z=0.0, x=[-1.0, 1.0])
+    assert np.isnan(edge.dpdz).all() and (edge.validity == 4).all()
+    assert "below the surface: complex potential" in ds.sigma_xx.attrs["stressfields_method"]
+    assert "stresses below the surface" in ds.sigma_xx.attrs["stressfields_accuracy"]
+
+
+def test_values_equal_direct_physics_calls():
+    x, z = np.linspace(-2, 2, 9), np.array([0.0, 0.3, 2.0])
+    ds = generate({"domain": "nonperiodic", "x": list(x), "z": list(z), "nu": 0.25}, method={"rtol": 1e-10})
+    v, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz", "sigma_yy"), x, z[:, None], 0.6, *F2.values(),
+                          periodic=False, nu=0.25, rtol=1e-10)
+    for k in v:
+        np.testing.assert_array_equal(ds[k].values, v[k])
+
+
+def test_points_table_and_compare_shape():
+    ds = sf.generate({"scenario": "wavy", "parameters": {**F2, "a": 0.4},
+                      "points": {"x": [0.0, 0.5, 1.2], "z": [0.1, 0.2, 0.0]}}).compute()
+    assert ds.sigma_zz.dims == ("point",)
+    v, _ = api.subsurface(("sigma_zz",), np.array([0.0, 0.5, 1.2]), np.array([0.1, 0.2, 0.0]), 0.4, *F2.values(),
+                          periodic=True, rtol=1e-10)
+    np.testing.assert_array_equal(ds.sigma_zz.values, v["sigma_zz"])
+
+
+def test_physical_units_and_tangential_force_equals_fx():
+    E, nu, lam = 2e11, 0.3, 1e-3
+    amps = [1e-6, 2e-8]
+    a_phys = 0.6 * lam / 2
+    pstar = math.pi * E / (1 - nu ** 2) * amps[0] / lam
+    P = float(api.mean_pressure(0.6, amps, F2["wavenumbers"], periodic=True)) * pstar * lam
+    common = {"amplitudes": amps, "wavenumbers": F2["wavenumbers"], "E": E, "nu": nu, "lambda_1": lam, "a": 0.6,
+              "x": [0.0, 0.5 * a_phys], "z": [0.2 * a_phys], "mu": 0.4}
+    phys = sf.generate({"scenario": "wavy", "parameters": {**common, "tangential_force": 0.5 * 0.4 * P}}).compute()
+    norm = generate({"x": [0.0, 0.5], "z": [0.2], "mu": 0.4, "fx": 0.5, "nu": nu})
+    np.testing.assert_allclose(phys.sigma_xz.values / pstar, norm.sigma_xz.values, rtol=1e-9, atol=1e-13)
+    np.testing.assert_allclose(phys.dpdz.values / (pstar / a_phys), norm.dpdz.values, rtol=1e-9, atol=1e-12)
+    assert phys.sigma_xx.attrs["units"] == "Pa" and phys.z.attrs["units"] == "m"
+    np.testing.assert_allclose(phys.stick_half_width.values / a_phys, norm.stick_half_width.values, rtol=1e-9)
+
+
+def test_partial_slip_variables_and_peaks():
+    ds = generate({"domain": "periodic", "x": {"start": -1.2, "stop": 1.2, "num": 25}, "z": [0.0, 0.4],
+                   "mu": 0.3, "fx": [0.0, 0.5]},
+                  output={"variables": ["shear_traction", "stick_half_width", "sigma_xz", "tau_max_peak",
+                                        "tau_max_peak_x", "tau_max_peak_depth"]})
+    assert float(ds.stick_half_width.sel(fx=0.0)) == 1.0 and 0 < float(ds.stick_half_width.sel(fx=0.5)) < 1
+    assert (ds.shear_traction.sel(fx=0.0) == 0).all()
+    np.testing.assert_array_equal(ds.sigma_xz.sel(z=0.0, fx=0.5), -ds.shear_traction.sel(fx=0.5))
+    assert (ds.tau_max_peak.sel(fx=0.5) > ds.tau_max_peak.sel(fx=0.0)).all()
+    assert (ds.peak_validity == 0).all()
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"z": -0.5}, ["z = -0.5", "[0, 1000000]"]),
+    ({"z": 2e6}, ["z = 2000000", "[0, 1000000]"]),
+    ({"z": 0.5, "mu": 0.3, "fx": 1.5}, ["fx = 1.5", "[0, 1]"]),
+    ({"z": 0.5, "fx": 0.5}, ["fx is a tangential load", "mu"]),
+    ({"E": 2e11, "lambda_1": 1e-3, "z": 0.0}, ["missing parameter 'nu'"]),
+    ({"E": 2e11, "nu": 0.3, "lambda_1": 1e-3, "mu": 0.3, "tangential_force": 1e12},
+     ["tangential_force = 1e+12 N/m exceeds mu P", "allowed: [0, mu P]"]),
+])
+def test_hostile_depth_and_tangential_load(tmp_path, capsys, change, words):
+    _exit_2(tmp_path, capsys, {"scenario": "wavy", "parameters": {**F2, "a": 0.3, **change}}, words)
+
+
+@pytest.mark.parametrize("change, words", [
+    ({"z": 0.5}, ["approximate_eq18", "field below the surface (z) needs an exact method"]),
+    ({"mu": 0.3, "fx": 0.5}, ["approximate_eq18", "a tangential load (fx) needs an exact method"]),
+])
+def test_approximate_methods_refuse_depth_and_tangential_load(tmp_path, capsys, change, words):
+    _exit_2(tmp_path, capsys, {"scenario": "wavy", "method": {"method": "approximate_eq18"},
+                               "parameters": {**F2, "a": 0.3, "domain": "nonperiodic", **change}}, words)
