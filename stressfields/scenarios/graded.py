@@ -61,6 +61,92 @@ R_REL = Parameter("rho", "radial coordinate rho = r/a: the radius r divided by t
 RENAMED = {"a": "contact_radius", "r": "rho"}
 GEOMETRY = (PROFILE, R, TAN, N, A, PROFILE_R, PROFILE_F)
 MATERIAL = (E0, C0, NU, K)
+#: below the surface (docs/theory/graded.md section 10): solved for k = 0 (any nu) and for k > 0 with
+#: nu = 1/(2+k), which `poisson = "holl_ratio"` sets
+Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface); given, the "
+              "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k) (the "
+              "paraboloid at k > 0)", low=0.0, high=1e6)
+POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu) or 'holl_ratio' (nu = 1/(2+k), "
+                      "following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
+                      default="given", choices=("given", "holl_ratio"), sweepable=False)
+NU_N = Parameter(NU.name, NU.meaning, default=NU.default, low=NU.low, low_open=True, high=NU.high,
+                 when={"poisson": ("given",)})
+MATERIAL_N = (E0, C0, POISSON_N, NU_N, K)
+STRESS_NAMES = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz", "von_mises", "sigma_1", "sigma_2", "sigma_3",
+                "tau_max")
+_AT = "at (r, z) on a plane through the axis, r = rho a, depth z a (z = 0: the surface)"
+
+
+def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, ...]:
+    """The stress below the surface and its invariants, and their validity flag (``dims`` ends in z, rho)."""
+    what = [("sigma_rr", "radial stress sigma_rr"), ("sigma_tt", "hoop stress sigma_theta_theta"),
+            ("sigma_zz", "normal stress sigma_zz"), ("sigma_rz", "shear stress sigma_rz"),
+            ("von_mises", "von Mises equivalent stress sqrt(3 J2)"), ("sigma_1", "largest principal stress"),
+            ("sigma_2", "intermediate principal stress"), ("sigma_3", "smallest principal stress"),
+            ("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2")]
+    edge = ("the adhesive edge r = a at z = 0 (+inf: the tensile edge singularity; sigma_rz NaN, its sign "
+            "depends on the direction of approach), " if adhesive else "")
+    return tuple(Variable(n, f"{m} {_AT}", units="Pa", dims=dims,
+                          comment="tension positive, z into the body; docs/theory/graded.md section 10")
+                 for n, m in what) + (
+        Variable("stress_validity", "validity of the stress variables at the point", dims=dims, dtype="int8",
+                 flag_values=(0, 1, 2, 3), always=True,
+                 flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                                "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
+                 comment=f"1: a value is +-inf where the exact field is unbounded ({edge}the conical tip r = 0 at "
+                         "z = 0 and k = 0, where the pressure is unbounded); 2: a value is NaN where the limit "
+                         "depends on the direction of approach; 3: a NaN below the surface, at a point the "
+                         "quadrature does not resolve. Only the stress variables in this file are considered."),
+    )
+
+
+def _depth_problems(values) -> list[str]:
+    """With `z` given: the (k, nu) and the profile must be solved below the surface (one line)."""
+    if values.get("z") is None:
+        return []
+    from ..physics.graded import holl_ratio
+    from ..physics.graded.interior import check_supported
+
+    g = _grid(values, ("k", "nu"))
+    nu = holl_ratio(g["k"]) if values.get("poisson") == "holl_ratio" else g["nu"]
+    try:
+        check_supported(g["k"], nu, values.get("profile", PROFILE.default))
+    except ValueError as exc:
+        return [f"z is given, but {exc}"]
+    return []
+
+
+def _nu(p):
+    """nu as the physics takes it: the parameter, or Holl's ratio 1/(2+k) with poisson = 'holl_ratio'."""
+    if p.get("poisson") == "holl_ratio":
+        k = _f(p, "k")
+        return None if k is None else 1.0 / (2.0 + k)
+    return _f(p, "nu")
+
+
+def _stress(names, p, options, **extra) -> dict:
+    """The requested stress variables below the surface and their validity flag."""
+    from ..physics import graded as gp
+    from ..physics.flags import validity_flag
+    from ..physics.graded.interior import INTERIOR, UNRESOLVED, interior_fields
+
+    wanted = [n for n in names if n in INTERIOR]
+    flag = "stress_validity" in names
+    if not wanted and not flag:
+        return {}
+    asked = wanted or list(INTERIOR)
+    z = _f(p, "z")
+    z = np.zeros(()) if z is None else z
+    out = interior_fields(asked, _indenter(p), a=_f(p, "contact_radius"), rho=_f(p, "rho"), z=z, k=_f(p, "k"),
+                          nu=_nu(p), E0=_f(p, "E0"), c0=_f(p, "c0"), method=options["method"], rtol=options["rtol"],
+                          **extra)
+    if flag:
+        deep = np.broadcast_to(z > 0.0, np.shape(out[asked[0]]))
+        code = validity_flag(*(out[n] for n in asked))
+        unresolved = deep & np.any([np.isnan(out[n]) for n in asked], axis=0)
+        out["stress_validity"] = np.where(unresolved, np.int8(UNRESOLVED), code).astype(np.int8)
+    del gp
+    return {n: v for n, v in out.items() if n in names}
 GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dimensions
 
 #: the methods of the route table (physics.graded.routes.METHODS, one definition in physics.names)
@@ -179,28 +265,33 @@ N_VARS = (
              dims=("k", "contact_radius") + GEOM + ("rho",)),
     _validity(N_DIMS + ("rho",), N_FLAGGED, "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
               "cone at k = 0), where the exact pressure is unbounded"),
-)
+) + stress_variables(N_DIMS + ("z", "rho"), adhesive=False)
 
 
 def _evaluate_normal(names, p, options):
     from ..physics import graded as gp
 
-    values = dict(**_where(p), k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
+    values = dict(**_where(p), k=_f(p, "k"), nu=_nu(p), E0=_f(p, "E0"), c0=_f(p, "c0"))
     out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, **values)
+    out.update(_stress(names, p, options))
     if "validity" in names:
         out["validity"] = _flag(gp.normal_fields, gp.fields.NORMAL, N_FLAGGED, out, p, options, **values)
     return out
 
 
 def _check_normal(values, physical, method):
-    return _check_profile(values, method)
+    return _check_profile(values, method) + _depth_problems(values)
 
 
 def route(values, method, rtol):
     """Closed forms of the paper for power-law profiles; the MDR quadrature for tabulated ones."""
     from ..physics import graded as gp
 
-    return gp.resolve(values.get("profile", PROFILE.default), method, rtol)
+    surface = gp.resolve(values.get("profile", PROFILE.default), method, rtol)
+    if values.get("z") is None:
+        return surface
+    below = gp.routes.resolve_interior(values.get("k", K.default), rtol)
+    return f"{surface[0]}; below the surface: {below[0]}", f"{surface[1]}; below the surface: {below[1]}"
 
 
 CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
@@ -210,7 +301,7 @@ GRADED_NORMAL = Scenario(
     name="graded_normal",
     summary="Rigid axisymmetric indenter on a power-law graded half-space E = E0 (z/c0)^k: depth, force, "
             "pressure and surface displacement (MDR)",
-    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (A_RAD, R_REL), variables=N_VARS,
+    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL_N + (A_RAD, Z, R_REL), variables=N_VARS,
     evaluate=_evaluate_normal, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     renamed=RENAMED,
     default_variables=("depth", "normal_force", "pressure", "uz"),
@@ -238,7 +329,7 @@ AD_VARS = (
              flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
              comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
                      "tabulated profile; the critical values are NaN there"),
-)
+) + stress_variables(AD_DIMS + ("z", "rho"), adhesive=True)
 
 
 def _evaluate_adhesive(names, p, options):
@@ -247,9 +338,10 @@ def _evaluate_adhesive(names, p, options):
     wanted = list(names)
     if "critical_validity" in names and "critical_radius" not in names:
         wanted.append("critical_radius")        # the flag is read off a_c
-    values = dict(**_where(p), k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"),
+    values = dict(**_where(p), k=_f(p, "k"), nu=_nu(p), E0=_f(p, "E0"), c0=_f(p, "c0"),
                   delta_gamma=_f(p, "delta_gamma"), mode=p.get("control"))
     out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, **values)
+    out.update(_stress(names, p, options, delta_gamma=_f(p, "delta_gamma")))
     if "critical_validity" in names:
         out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
     if "validity" in names:
@@ -261,7 +353,7 @@ GRADED_ADHESIVE = Scenario(
     name="graded_adhesive",
     summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
             "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
-    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL),
+    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL_N + (DGAM, CONTROL, A_RAD, Z, R_REL),
     variables=AD_VARS,
     evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     renamed=RENAMED,

@@ -194,7 +194,7 @@ def _invariants(names, T, flat, A, RHO, Z, K, NU, DG):
         lead = np.full((bad.size, 3, 3), np.nan)
         k, nu, r = K[bad], NU[bad], RHO[bad]
         edge = (r == 1.0) & (DG[bad] > 0.0)            # adhesive edge: p -> -inf, tension
-        side = np.where(k > 0.0, 1.0 / (1.0 + k), 2.0 * nu)   # (G66) at k > 0; the punch edge (rr, tt, zz) ~ (1, 2nu, 1)
+        side = np.where(k > 0.0, 1.0 / (1.0 + k), 2.0 * nu)  # (G66) at k > 0; punch edge ~ (1, 2nu, 1)
         lead[edge] = 0.0
         lead[edge, 0, 0] = np.where(k[edge] > 0.0, side[edge], 1.0)
         lead[edge, 1, 1] = side[edge]
