@@ -100,6 +100,43 @@ def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, .
     )
 
 
+_SEARCH = ("Found by the search of physics.axisymmetric.peaks on the graded field (physics.graded.interior.peaks): "
+           "the surface singular points r = 0 and r = a first, a grid over rho in [0, 2] and depths 0 and 1e-3 a to "
+           "3a, a bounded Nelder-Mead refinement to 1e-9 a; the value is the field at the refined point, the "
+           "position accurate to about 1e-7 a. Where the field is unbounded at a surface singular point (the "
+           "adhesive edge, the conical tip at k = 0) the peak is +inf there, depth 0, and peak_validity is 1.")
+
+
+def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
+    """The per-case peaks of tau_max and von Mises in the half-space and where they sit."""
+    out = []
+    for name, what in (("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"),
+                       ("von_mises", "von Mises equivalent stress sqrt(3 J2)")):
+        out += [Variable(f"{name}_peak", f"largest {what} in the half-space z >= 0", units="Pa", dims=case,
+                         comment=_SEARCH),
+                Variable(f"{name}_peak_rho", f"radius r/a of the largest {what}", dims=case, comment=_SEARCH),
+                Variable(f"{name}_peak_depth", f"depth z/a of the largest {what}", dims=case, comment=_SEARCH)]
+    out.append(Variable(
+        "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
+        flag_values=(0, 1, 2, 4), flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                                                 "undefined_direction_dependent_limit", "search_not_converged"),
+        comment="0: the peaks are within the stated accuracy; 1: unbounded at a surface singular point (+inf "
+                "there, depth 0); 2: NaN at a surface singular point; 4: the refinement did not converge or "
+                "ended on the border of the search box (rho = 2 or z = 3a): the best found, not the peaks. "
+                "Written whenever a peak variable is.", always=tuple(v.name for v in out)))
+    return tuple(out)
+
+
+def _peaks(names, p, options, **extra) -> dict:
+    from ..physics.graded.interior import PEAKS, peaks
+
+    if not any(n in PEAKS for n in names):
+        return {}
+    found = peaks(_indenter(p), a=_f(p, "contact_radius"), k=_f(p, "k"), nu=_nu(p), E0=_f(p, "E0"),
+                  c0=_f(p, "c0"), method=options["method"], rtol=options["rtol"], **extra)
+    return {n: found[n] for n in names if n in PEAKS}
+
+
 def _depth_problems(values) -> list[str]:
     """With `z` given: the (k, nu) and the profile must be solved below the surface (one line)."""
     if values.get("z") is None:
@@ -126,7 +163,6 @@ def _nu(p):
 
 def _stress(names, p, options, **extra) -> dict:
     """The requested stress variables below the surface and their validity flag."""
-    from ..physics import graded as gp
     from ..physics.flags import validity_flag
     from ..physics.graded.interior import INTERIOR, UNRESOLVED, interior_fields
 
@@ -145,7 +181,6 @@ def _stress(names, p, options, **extra) -> dict:
         code = validity_flag(*(out[n] for n in asked))
         unresolved = deep & np.any([np.isnan(out[n]) for n in asked], axis=0)
         out["stress_validity"] = np.where(unresolved, np.int8(UNRESOLVED), code).astype(np.int8)
-    del gp
     return {n: v for n, v in out.items() if n in names}
 GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dimensions
 
@@ -265,7 +300,7 @@ N_VARS = (
              dims=("k", "contact_radius") + GEOM + ("rho",)),
     _validity(N_DIMS + ("rho",), N_FLAGGED, "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
               "cone at k = 0), where the exact pressure is unbounded"),
-) + stress_variables(N_DIMS + ("z", "rho"), adhesive=False)
+) + stress_variables(N_DIMS + ("z", "rho"), adhesive=False) + peak_variables(N_DIMS)
 
 
 def _evaluate_normal(names, p, options):
@@ -274,6 +309,7 @@ def _evaluate_normal(names, p, options):
     values = dict(**_where(p), k=_f(p, "k"), nu=_nu(p), E0=_f(p, "E0"), c0=_f(p, "c0"))
     out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, **values)
     out.update(_stress(names, p, options))
+    out.update(_peaks(names, p, options))
     if "validity" in names:
         out["validity"] = _flag(gp.normal_fields, gp.fields.NORMAL, N_FLAGGED, out, p, options, **values)
     return out
@@ -329,7 +365,7 @@ AD_VARS = (
              flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
              comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
                      "tabulated profile; the critical values are NaN there"),
-) + stress_variables(AD_DIMS + ("z", "rho"), adhesive=True)
+) + stress_variables(AD_DIMS + ("z", "rho"), adhesive=True) + peak_variables(AD_DIMS)
 
 
 def _evaluate_adhesive(names, p, options):
@@ -342,6 +378,7 @@ def _evaluate_adhesive(names, p, options):
                   delta_gamma=_f(p, "delta_gamma"), mode=p.get("control"))
     out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, **values)
     out.update(_stress(names, p, options, delta_gamma=_f(p, "delta_gamma")))
+    out.update(_peaks(names, p, options, delta_gamma=_f(p, "delta_gamma")))
     if "critical_validity" in names:
         out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
     if "validity" in names:

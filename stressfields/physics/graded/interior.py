@@ -225,3 +225,39 @@ def _tip_exponent(flat: Indenter, idx):
         return np.zeros(idx.size)
     n, _ = flat.power()
     return np.broadcast_to(np.asarray(n, dtype=float), (flat.geometry[0].size,))[idx] - 1.0
+
+
+#: the keys of ``peaks`` (positions in units of the contact radius)
+PEAKS = ("tau_max_peak", "tau_max_peak_rho", "tau_max_peak_depth",
+         "von_mises_peak", "von_mises_peak_rho", "von_mises_peak_depth", "peak_validity")
+
+
+def peaks(profile: Indenter, *, a, k, nu, E0, c0, delta_gamma=None, method: str = "auto",
+          rtol: float = 1e-10) -> dict[str, np.ndarray]:
+    """The largest tau_max and von Mises in the half-space z >= 0 and where they sit (rho = r/a, depth z/a),
+    for every case of the broadcast arguments (a loop), and ``peak_validity`` (the codes of
+    ``axisymmetric.peaks``: 0 within accuracy, 1 unbounded at a surface singular point, 2 undefined there,
+    4 not converged).  The search of ``axisymmetric.peaks`` (its module docstring) on the field of
+    :func:`interior_fields`: the surface singular points r = 0 and r = a probed first, a grid over
+    rho in [0, 2] and 41 depths to 3, a bounded Nelder-Mead refinement of the best local maxima."""
+    from ..axisymmetric.peaks import FINITE, _peak
+
+    args = [np.asarray(v, dtype=float) for v in (a, k, nu, E0, c0, 0.0 if delta_gamma is None else delta_gamma)]
+    shape = np.broadcast_shapes(*(v.shape for v in args), *(g.shape for g in profile.geometry))
+    args = [np.broadcast_to(v, shape) for v in args]
+    geo = [np.broadcast_to(g, shape) for g in profile.geometry]
+    out = {n: np.empty(shape, dtype=np.int8 if n == "peak_validity" else float) for n in PEAKS}
+    for idx in np.ndindex(shape):
+        one = Indenter(profile.kind, tuple(np.asarray(g[idx]) for g in geo), profile.table)
+        ai, ki, nui, ei, ci, dgi = (float(v[idx]) for v in args)
+        flag = FINITE
+        for name in ("tau_max", "von_mises"):
+            def field(u, w, name=name):
+                return interior_fields([name], one, a=ai, rho=u, z=w, k=ki, nu=nui, E0=ei, c0=ci,
+                                       delta_gamma=None if delta_gamma is None else dgi, method=method,
+                                       rtol=rtol)[name]
+            value, x, z, code = _peak(field, np.array([0.0, 1.0]), False)
+            out[f"{name}_peak"][idx], out[f"{name}_peak_rho"][idx], out[f"{name}_peak_depth"][idx] = value, x, z
+            flag = max(flag, code)
+        out["peak_validity"][idx] = flag
+    return out
