@@ -24,7 +24,8 @@ def run(params, variables, scenario="graded_normal"):
 
 def test_surface_stress_is_minus_the_pressure_bit_for_bit():
     for scenario, extra in (("graded_normal", {}), ("graded_adhesive", {"delta_gamma": 0.4})):
-        ds = run({"k": [0.0, 0.5], "poisson": "holl_ratio", "rho": np.linspace(0, 1.5, 7).tolist(), "z": 0.0, **extra},
+        ds = run({"k": [0.0, 0.5], "poisson": "holl_ratio", "rho": np.linspace(0, 1.5, 7).tolist(), "z": 0.0,
+                  **extra},
                  ["pressure", "sigma_zz"], scenario)
         assert np.array_equal(ds.sigma_zz.values, -ds.pressure.transpose(*ds.sigma_zz.dims).values)
 
@@ -74,12 +75,15 @@ def test_adhesive_edge_is_flagged_unbounded_and_the_interior_finite():
     ({"k": 0.5, "poisson": "holl_ratio", "z": 0.5, "profile": "conical", "tan_theta": 0.1},
      "z is given, but profile = 'conical' with k = 0.5 is not solved below the surface"),
     ({"k": 0.0, "z": -0.5}, "z = -0.5 must be a number in [0, 1000000]"),
+    ({"scenario": "graded_tangential", "k": 0.5, "poisson": "holl_ratio", "z": 0.2, "x": 0.5},
+     "z or x is given with k = 0.5: below the surface under tangential load the graded family solves k = 0"),
 ])
 def test_unsupported_cases_and_negative_depth_exit_2_in_one_line(tmp_path, capsys, extra, expect):
     params = {**BASE, **extra}
+    scenario = params.pop("scenario", "graded_normal")
     if "profile" in extra:
         params.pop("R")
-    lines = ["scenario = \"graded_normal\"", "[parameters]"] + [
+    lines = [f"scenario = \"{scenario}\"", "[parameters]"] + [
         f"{k} = {v!r}".replace("'", "\"") for k, v in params.items()] + ["[output]", "variables = [\"sigma_zz\"]"]
     recipe = tmp_path / "r.toml"
     recipe.write_text("\n".join(lines) + "\n")

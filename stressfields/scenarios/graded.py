@@ -422,6 +422,11 @@ DELTA_X = Parameter("delta_x", "imposed tangential displacement delta_x (displac
                     low=0.0, high=1e3)
 PAIR = ("E0", "k", "nu", "E0_2", "nu_2")
 T_FIELD = PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx", "rho")
+T_DEEP = PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx", "z", "x")
+X_T = Parameter("x", "coordinate x/a on the plane y = 0 through the axis along the tangential load (signed): "
+                "where the stress variables are computed (with z)", low=-1e6, high=1e6)
+Z_T = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface) of the stress "
+                "variables; solved at k = 0", low=0.0, high=1e6)
 T_VARS = (
     Variable("stick_radius", "radius c of the stick zone divided by the contact radius a (eq. 51)",
              dims=("k", "contact_radius") + GEOM + ("fx",)),
@@ -443,6 +448,23 @@ T_VARS = (
     _validity(T_FIELD, ("shear_traction",), "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
               "with n + k <= 1; under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) "
               "and flagged 0"),
+) + tuple(
+    Variable(n, f"{m} at (x, 0, z) on the plane y = 0 along the tangential load, x = x a, depth z a (z = 0: the "
+             "surface), in the lower body", units="Pa", dims=T_DEEP,
+             comment="tension positive, z into the body; k = 0 only; docs/theory/graded.md (G69)")
+    for n, m in (("sigma_xx", "normal stress sigma_xx"), ("sigma_yy", "normal stress sigma_yy"),
+                 ("sigma_zz", "normal stress sigma_zz"), ("sigma_xz", "shear stress sigma_xz"),
+                 ("von_mises", "von Mises equivalent stress sqrt(3 J2)"), ("sigma_1", "largest principal stress"),
+                 ("sigma_2", "intermediate principal stress"), ("sigma_3", "smallest principal stress"),
+                 ("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"))
+) + (
+    Variable("stress_validity", "validity of the stress variables at the point", dims=T_DEEP, dtype="int8",
+             flag_values=(0, 1, 2, 3), always=True,
+             flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                            "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
+             comment="the codes of the axisymmetric family's validity: 1 +-inf where the exact field is unbounded "
+                     "(the conical tip r = 0 at z = 0), 2 NaN where the limit depends on the direction (the tip "
+                     "in gross slip), 3 NaN below the surface at a point the 1-D routes do not resolve"),
 )
 
 
@@ -467,6 +489,7 @@ def _evaluate_tangential(names, p, options):
     values = dict(**_where(p), fx=_f(p, "fx"), delta_x=_f(p, "delta_x"), mu=_f(p, "mu"), c0=_f(p, "c0"), k=k,
                   nu=nu, E0=e0, E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
     out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, **values)
+    out.update(_tangential_stress(names, p, options, values))
     if "coupling" in names:
         ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
         out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
@@ -476,8 +499,30 @@ def _evaluate_tangential(names, p, options):
     return out
 
 
+def _tangential_stress(names, p, options, values) -> dict:
+    """The requested stress variables of the lower body (k = 0) and their validity flag."""
+    from ..physics.graded.interior import TANGENTIAL_INTERIOR, tangential_interior_fields
+
+    wanted = [n for n in names if n in TANGENTIAL_INTERIOR]
+    if "stress_validity" in names:
+        wanted.append("validity")
+    if not wanted:
+        return {}
+    x, z = _f(p, "x"), _f(p, "z")
+    got = tangential_interior_fields(
+        wanted, _indenter(p), a=values["a"], x=np.zeros(()) if x is None else x, z=np.zeros(()) if z is None else z,
+        fx=values["fx"], mu=values["mu"], k=values["k"], nu=values["nu"], E0=values["E0"], c0=values["c0"],
+        E0_2=values["E0_2"], nu_2=values["nu_2"], method=options["method"], rtol=options["rtol"])
+    if "validity" in got:
+        got["stress_validity"] = got.pop("validity")
+    return got
+
+
 def _check_tangential(values, physical, method):
     problems = _check_profile(values, method)
+    if (values.get("z") is not None or values.get("x") is not None) and np.any(np.asarray(values.get("k")) > 0.0):
+        problems.append(f"z or x is given with k = {float(np.max(values['k']))!r}: below the surface under tangential "
+                        "load the graded family solves k = 0")
     if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
         return problems
     from ..physics import graded as gp
@@ -508,7 +553,8 @@ GRADED_TANGENTIAL = Scenario(
     summary="Cattaneo-Mindlin partial slip between power-law graded bodies: stick radius, tangential "
             "displacement and force, shear traction (MDR)",
     references=REFERENCE, theory="graded",
-    parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL),
+    parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL,
+                           Z_T, X_T),
     variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
     conventions=CONVENTIONS, route=route, renamed=RENAMED,
     default_variables=("stick_radius", "tangential_displacement", "max_tangential_displacement", "normal_force",

@@ -5,7 +5,6 @@ with E(z) = E0 (z/c0)^k) by finite differences, the traction and force balances,
 integral of the point-load kernel (test_graded_interior_reference.py)."""
 from __future__ import annotations
 
-import json
 import math
 from pathlib import Path
 
@@ -236,3 +235,52 @@ def test_singular_points_are_flagged_infinite_not_finite():
     below = interior_fields(("sigma_zz",), gp.Indenter.conical(0.2), a=A0, rho=0.0, z=1e-3, k=0.0, nu=0.3,
                             E0=E0, c0=C0)
     assert np.isfinite(below["sigma_zz"])
+
+
+# -- tangential load (partial slip) at k = 0 ------------------------------------------------------------
+
+@pytest.mark.parametrize("body2", [None, np.inf])
+@pytest.mark.parametrize("fx", [0.4, 1.0])
+def test_k0_tangential_traction_is_the_familys_shear_traction(body2, fx):
+    """sigma_xz -> -tau(r), sigma_zz -> -p(r) as z -> 0 on both sides of the axis: the graded shear
+    traction (G45)-(G48) and pressure (G18) with c_N* of the pair, independent formulas (identical bodies:
+    half the rigid c_N*)."""
+    from stressfields.physics.graded import normal, tangential
+    from stressfields.physics.graded.interior import tangential_interior_fields
+
+    x = np.array([-1.4, -0.95, -0.6, -0.2, 0.0, 0.3, 0.7, 0.99, 1.3])
+    nu, mu = 0.3, 0.4
+    tau = tangential.shear_traction(np.abs(x) * A0, A0, fx, k=0.0, nu=nu, mu=mu, E0=E0, c0=C0, n=2.0, A_n=0.5 / R,
+                                    E0_2=body2, require_decoupled=False)
+    p = normal.pressure(np.abs(x) * A0, A0, k=0.0, nu=nu, E0=E0, c0=C0, n=2.0, A_n=0.5 / R,
+                        E0_2=E0 if body2 is None else body2)
+    scale = float(np.max(p))
+    for z, tol in ((0.0, 1e-12), (1e-10, 1e-8)):
+        got = tangential_interior_fields(["sigma_xz", "sigma_zz"], PARA, a=A0, x=x, z=z, fx=fx, mu=mu, k=0.0, nu=nu,
+                                         E0=E0, c0=C0, E0_2=body2)
+        np.testing.assert_allclose(got["sigma_xz"], -tau, rtol=0, atol=tol * scale)
+        np.testing.assert_allclose(got["sigma_zz"], -p, rtol=0, atol=tol * scale)
+
+
+def test_k0_tangential_below_the_surface_is_the_axisymmetric_field_times_the_pair_modulus():
+    from stressfields.physics.axisymmetric import interior_stress, interior_stress_tangential
+    from stressfields.physics.graded.interior import tangential_interior_fields
+
+    x, z, nu, mu, fx = np.array([-0.8, 0.0, 0.5, 1.2]), np.array([0.1, 0.4, 0.3, 0.6]), 0.25, 0.3, 0.6
+    got = tangential_interior_fields(["sigma_xx", "sigma_yy", "sigma_zz", "sigma_xz"], PARA, a=A0, x=x, z=z, fx=fx,
+                                     mu=mu, k=0.0, nu=nu, E0=E0, c0=C0)
+    half = E0 / (1 - nu * nu) / 2.0                  # identical bodies: c_N* = E*/2 (eq. 46)
+    c = A0 * (1 - fx) ** (1 / 3)                     # (G33) at n = 2, k = 0
+    prof = ax.paraboloid(R)
+    n = interior_stress(x * A0, 0.0, z * A0, A0, nu, prof)
+    t = interior_stress_tangential(x * A0, 0.0, z * A0, A0, c, nu, mu, prof)
+    for comp in ("xx", "yy", "zz", "xz"):
+        np.testing.assert_allclose(got[f"sigma_{comp}"], half * (n[comp] + t[comp]), rtol=1e-12,
+                                   atol=1e-12 * half * 0.1)
+
+
+def test_tangential_k_above_zero_is_refused():
+    from stressfields.physics.graded.interior import tangential_interior_fields
+
+    with pytest.raises(ValueError, match=r"k = 0\.5 is not solved below the surface under tangential load"):
+        tangential_interior_fields(["sigma_xz"], PARA, a=A0, x=0.0, z=0.3, fx=0.5, mu=0.3, k=0.5, nu=0.4, E0=E0, c0=C0)

@@ -261,3 +261,60 @@ def peaks(profile: Indenter, *, a, k, nu, E0, c0, delta_gamma=None, method: str 
             flag = max(flag, code)
         out["peak_validity"][idx] = flag
     return out
+
+
+#: the fields of ``tangential_interior_fields``: the Cartesian set on the plane y = 0 along the load
+TANGENTIAL_STRESS = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xz")
+TANGENTIAL_INTERIOR = TANGENTIAL_STRESS + ("von_mises",) + PRINCIPAL + ("tau_max", "validity")
+
+
+def tangential_interior_fields(names: Sequence[str], profile: Indenter, *, a, x, z, fx, mu, k, nu, E0, c0,
+                               E0_2=None, nu_2=None, method: str = "auto",
+                               rtol: float = 1e-10) -> dict[str, np.ndarray]:
+    """The stress in the lower body of a Cattaneo-Mindlin contact of graded bodies at k = 0 (G69): fields among
+    :data:`TANGENTIAL_INTERIOR` at (x a, 0, z a), x signed along the tangential load, z >= 0 the depth.
+
+    At k = 0 the traction of the pair is the axisymmetric family's (pressure (G17) with c_N* of the pair,
+    shear mu [p(r; a) - p(r; c)] with the stick radius c = a (1 - fx)^(1/(n+1)) (G33)), so the stress is
+    the axisymmetric family's entry point (``axisymmetric.fields``: normal plus tangential interior, the
+    surface kernels at z = 0, the invariants' limits at singular points, the validity codes 0-3) with the
+    tangential displacement that gives that stick radius, scaled by c_N* instead of E*.  Body 2 as
+    :func:`~.fields.tangential_fields` (None: identical; inf: rigid).  ``validity`` is the family's flag.
+    """
+    from .. import axisymmetric as ax
+    from ..axisymmetric.profiles import displacement_ratio, slip_ratio
+
+    names = list(names)
+    unknown = [n for n in names if n not in TANGENTIAL_INTERIOR]
+    if unknown:
+        raise ValueError(f"unknown field(s) {unknown!r}: use some of {', '.join(TANGENTIAL_INTERIOR)}")
+    if not names:
+        return {}
+    if E0_2 is None:
+        E0_2, nu_2 = E0, nu
+    arrays = [np.asarray(v, dtype=float) for v in (a, x, z, fx, mu, k, nu, E0, c0, E0_2,
+                                                   nu if nu_2 is None else nu_2)] + list(profile.geometry)
+    shape = np.broadcast_shapes(*(v.shape for v in arrays))
+    A, X, Z, FX, MU, K, NU, E, C0, E2, NU2, *G = (np.ascontiguousarray(np.broadcast_to(v, shape)).ravel()
+                                                  for v in arrays)
+    if np.any(~(Z >= 0.0)):
+        raise ValueError(f"z = {float(Z[~(Z >= 0.0)][0])!r} is outside the allowed range z >= 0 (depth below the "
+                         "surface / contact radius)")
+    if np.any(K != 0.0):
+        raise ValueError(f"k = {float(K[K != 0.0][0])!r} is not solved below the surface under tangential load: "
+                         "the graded family solves k = 0 there")
+    cN = c_N_star(K, NU, E, C0, E2, NU2)
+    flat = Indenter(profile.kind, tuple(G), profile.table)
+    keys = np.stack(G, axis=-1) if G else np.zeros((A.size, 0))
+    groups = np.unique(keys, axis=0) if keys.shape[1] else np.zeros((1, 0))
+    out = {n: np.empty(A.size, dtype=np.int8 if n == "validity" else float) for n in names}
+    for g in groups:
+        sel = np.flatnonzero(np.all(keys == g, axis=1)) if keys.shape[1] else np.arange(A.size)
+        prof = _axisymmetric_profile(flat, [float(v) for v in g])
+        a_s = A[sel]
+        ux0 = displacement_ratio(slip_ratio(prof, a_s, FX[sel]), NU[sel], MU[sel])
+        vals, _ = ax.fields(names, prof, X[sel] * a_s, 0.0, Z[sel] * a_s, a=a_s, nu=NU[sel], mu=MU[sel], ux0=ux0,
+                            method=method, rtol=rtol, scale=cN[sel])
+        for n in names:
+            out[n][sel] = vals[n]
+    return {n: v.reshape(shape) for n, v in out.items()}
