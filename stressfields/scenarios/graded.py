@@ -503,7 +503,7 @@ def _tangential_stress(names, p, options, values) -> dict:
     """The requested stress variables of the lower body (k = 0) and their validity flag."""
     from ..physics.graded.interior import TANGENTIAL_INTERIOR, tangential_interior_fields
 
-    wanted = [n for n in names if n in TANGENTIAL_INTERIOR]
+    wanted = [n for n in names if n in TANGENTIAL_INTERIOR and n != "validity"]   # (that name is the surface's flag)
     if "stress_validity" in names:
         wanted.append("validity")
     if not wanted:
