@@ -62,5 +62,6 @@ def resolve_interior(k, rtol: float) -> tuple[str, str]:
                    "(superposition)")
     if any(v > 0.0 for v in k):
         routes.append(INTERIOR_HOLL)
-        acc.append(f"k > 0: |error| <= rtol = {rtol:g} times the pressure amplitude; on z = 0 the closed-form limit")
+        acc.append(f"k > 0: |error| <= rtol * max(|value|, P), rtol = {rtol:g}, P the pressure scale of the contact; "
+                   "on z = 0 the closed-form limit")
     return "; ".join(routes), "; ".join(acc)
