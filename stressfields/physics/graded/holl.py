@@ -29,7 +29,7 @@ import math
 
 import numpy as np
 
-from ..quadrature import gauss_jacobi, gauss_legendre
+from ..quadrature import gauss_jacobi, gauss_legendre, table_row
 
 __all__ = ["COMPONENTS", "orders", "disc_stress", "surface_limit"]
 
@@ -56,15 +56,7 @@ _BLOCK = 256            # points per block: (points x radial nodes x azimuth nod
 
 def orders(rtol: float) -> tuple[int, float, int, float, int]:
     """(radial nodes per panel, growth ratio, nodes per u-panel, u-panel length, nodes on [pi/2, pi])."""
-    rtol = float(rtol)
-    if not (math.isfinite(rtol) and rtol > 0.0):
-        raise ValueError(f"rtol = {rtol!r} must be a positive finite number")
-    if rtol < _ORDERS[-1][0]:
-        raise ValueError(f"rtol = {rtol!r} is below the reachable {_ORDERS[-1][0]:g} of the 2-D quadrature")
-    for tol, o in _ORDERS:
-        if rtol >= tol:
-            return o
-    return _ORDERS[-1][1]  # pragma: no cover
+    return table_row(_ORDERS, rtol, "the 2-D quadrature")
 
 
 def surface_limit(p, k) -> dict[str, np.ndarray]:

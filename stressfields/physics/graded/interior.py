@@ -87,20 +87,11 @@ def interior_fields(names: Sequence[str], profile: Indenter, *, a, rho, z, k, nu
     accuracy: docs/theory/graded.md (G67); singular points (conical tip at k = 0, adhesive edge r = a)
     only at z = 0, with +-inf or NaN as the surface fields (G68).
     """
-    names = list(names)
-    unknown = [n for n in names if n not in INTERIOR]
-    if unknown:
-        raise ValueError(f"unknown field(s) {unknown!r}: use some of {', '.join(INTERIOR)}")
+    names = _known(names, INTERIOR)
     if not names:
         return {}
-    geo = profile.geometry
-    arrays = [np.asarray(v, dtype=float) for v in (a, rho, z, k, nu, E0, c0,
-                                                   0.0 if delta_gamma is None else delta_gamma)] + list(geo)
-    shape = np.broadcast_shapes(*(v.shape for v in arrays))
-    A, RHO, Z, K, NU, E, C0, DG, *G = (np.ascontiguousarray(np.broadcast_to(v, shape)).ravel() for v in arrays)
-    if np.any(~(Z >= 0.0)):
-        bad = float(Z[~(Z >= 0.0)][0])
-        raise ValueError(f"z = {bad!r} is outside the allowed range z >= 0 (depth below the surface / contact radius)")
+    shape, (A, RHO, Z, K, NU, E, C0, DG, *G) = _flat(profile, z, a, rho, z, k, nu, E0, c0,
+                                                     0.0 if delta_gamma is None else delta_gamma)
     check_supported(K, NU, profile.kind)
     flat = Indenter(profile.kind, tuple(G), profile.table)
     mat = dict(k=K, nu=NU, E0=E, c0=C0)
@@ -130,19 +121,38 @@ def interior_fields(names: Sequence[str], profile: Indenter, *, a, rho, z, k, nu
     return {n: v.reshape(shape) for n, v in out.items()}
 
 
+def _known(names, allowed) -> list[str]:
+    names = list(names)
+    unknown = [n for n in names if n not in allowed]
+    if unknown:
+        raise ValueError(f"unknown field(s) {unknown!r}: use some of {', '.join(allowed)}")
+    return names
+
+
+def _flat(profile: Indenter, z, *values):
+    """(shape, flat arrays): ``values`` and the profile's geometry arrays broadcast and flattened (the
+    geometry last), after refusing a depth z < 0 or NaN in one line."""
+    arrays = [np.asarray(v, dtype=float) for v in values] + list(profile.geometry)
+    shape = np.broadcast_shapes(*(v.shape for v in arrays))
+    z = np.asarray(z, dtype=float)
+    if np.any(~(z >= 0.0)):
+        raise ValueError(f"z = {float(z[~(z >= 0.0)].flat[0])!r} is outside the allowed range z >= 0 (depth below "
+                         "the surface / contact radius)")
+    return shape, [np.ascontiguousarray(np.broadcast_to(v, shape)).ravel() for v in arrays]
+
+
 def _homogeneous(T, idx, flat, A, RHO, Z, NU, cN, dl, method, rtol):
     """k = 0: c_N* times the axisymmetric interior (G57), minus the punch of depth Delta l_max (G58)."""
     from ..axisymmetric import interior_stress
     from ..axisymmetric.interior_hertz import punch_unit
 
-    m = {"auto": "auto", "closed": "closed", "quadrature": "quadrature"}[method]
     keys = np.stack([g[idx] for g in flat.geometry], axis=-1) if flat.geometry else np.zeros((idx.size, 0))
     groups = np.unique(keys, axis=0) if keys.shape[1] else np.zeros((1, 0))
     for g in groups:
         sel = idx[np.all(keys == g, axis=1)] if keys.shape[1] else idx
         prof = _axisymmetric_profile(flat, [float(v) for v in g])
         a = A[sel]
-        s = interior_stress(RHO[sel] * a, 0.0, Z[sel] * a, a, NU[sel], prof, method=m, rtol=rtol)
+        s = interior_stress(RHO[sel] * a, 0.0, Z[sel] * a, a, NU[sel], prof, method=method, rtol=rtol)
         for c, src in (("rr", "xx"), ("tt", "yy"), ("zz", "zz"), ("rz", "xz")):
             T[c][sel] = cN[sel] * s[src]
         adh = dl[sel] > 0.0
@@ -284,22 +294,13 @@ def tangential_interior_fields(names: Sequence[str], profile: Indenter, *, a, x,
     from .. import axisymmetric as ax
     from ..axisymmetric.profiles import displacement_ratio, slip_ratio
 
-    names = list(names)
-    unknown = [n for n in names if n not in TANGENTIAL_INTERIOR]
-    if unknown:
-        raise ValueError(f"unknown field(s) {unknown!r}: use some of {', '.join(TANGENTIAL_INTERIOR)}")
+    names = _known(names, TANGENTIAL_INTERIOR)
     if not names:
         return {}
     if E0_2 is None:
         E0_2, nu_2 = E0, nu
-    arrays = [np.asarray(v, dtype=float) for v in (a, x, z, fx, mu, k, nu, E0, c0, E0_2,
-                                                   nu if nu_2 is None else nu_2)] + list(profile.geometry)
-    shape = np.broadcast_shapes(*(v.shape for v in arrays))
-    A, X, Z, FX, MU, K, NU, E, C0, E2, NU2, *G = (np.ascontiguousarray(np.broadcast_to(v, shape)).ravel()
-                                                  for v in arrays)
-    if np.any(~(Z >= 0.0)):
-        raise ValueError(f"z = {float(Z[~(Z >= 0.0)][0])!r} is outside the allowed range z >= 0 (depth below the "
-                         "surface / contact radius)")
+    shape, (A, X, Z, FX, MU, K, NU, E, C0, E2, NU2, *G) = _flat(profile, z, a, x, z, fx, mu, k, nu, E0, c0, E0_2,
+                                                                nu if nu_2 is None else nu_2)
     if np.any(K != 0.0):
         raise ValueError(f"k = {float(K[K != 0.0][0])!r} is not solved below the surface under tangential load: "
                          "the graded family solves k = 0 there")
