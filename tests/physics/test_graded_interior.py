@@ -284,3 +284,19 @@ def test_tangential_k_above_zero_is_refused():
 
     with pytest.raises(ValueError, match=r"k = 0\.5 is not solved below the surface under tangential load"):
         tangential_interior_fields(["sigma_xz"], PARA, a=A0, x=0.0, z=0.3, fx=0.5, mu=0.3, k=0.5, nu=0.4, E0=E0, c0=C0)
+
+
+def test_thin_layers_are_resolved_or_nan_never_infinite():
+    """z/a down to 1e-99 next to the axis, inside, at and outside the edge tends to the surface limit (G66);
+    below the resolved layer (1e-100) NaN, which the entry point flags 3 (not resolved)."""
+    k, e = 0.5, 0.75
+    rho = np.array([0.0, 0.5, 0.999999, 1.0, 1.5])
+    s = holl.disc_stress(rho, 1e-99, k, e, 1e-8)
+    p = np.clip(1 - rho ** 2, 0.0, None) ** e
+    np.testing.assert_allclose(s["zz"], -p, rtol=0, atol=1e-8)          # the contract: rtol times P = 1
+    np.testing.assert_allclose(s["rr"], -p / (1 + k), rtol=0, atol=1e-8)
+    deep = holl.disc_stress([0.5, 0.3], [1e-200, 5e-324], k, e, 1e-8)
+    assert all(np.isnan(v).all() for v in deep.values())
+    from stressfields.physics.graded.interior import interior_fields as f
+    out = f(["sigma_zz"], PARA, a=A0, rho=0.5, z=1e-200, k=k, nu=1 / (2 + k), E0=E0, c0=C0)
+    assert np.isnan(out["sigma_zz"])
