@@ -418,6 +418,21 @@ def _quadrature_rate(repeats: int) -> dict:
     return out
 
 
+def batches_rate(repeats: int, n: int = 1_048_576, batch_size: int = 65_536) -> dict:
+    """Samples per second of `sf.batches` for Hertz below the surface (six stresses and the validity
+    flag at scrambled Sobol points of x, y in [-2a, 2a], z in [0, 3a]; one thread: the kernels are
+    NumPy, called in the caller's thread): medians of ``repeats`` passes over ``n`` samples, per wall
+    and per CPU second (a loaded machine shares its cores: the CPU figure is the one core's rate)."""
+    import stressfields as sf
+
+    box = {"n": n, "method": "sobol", "x": [-2.0, 2.0], "y": [-2.0, 2.0], "z": [0.0, 3.0]}
+    recipe = {"scenario": "parabolic", "parameters": {"nu": 0.3}, "points": {"sample": box},
+              "output": {"variables": list(STRESS)}}
+    stream = sf.batches(recipe, batch_size, seed=0)
+    wall, cpu = _wall_cpu(lambda: sum(len(inputs) for inputs, _ in stream), repeats)
+    return {"batches_hertz_interior_samples_per_s": n / wall, "batches_hertz_interior_samples_per_cpu_s": n / cpu}
+
+
 def _hertz_mindlin_512(repeats: int) -> dict:
     """All surface fields of a 512^2 Hertz-Mindlin partial-slip case, through the API, at rtol 1e-10,
     on the closed-form route (the default) and forced onto the integral route."""
@@ -530,6 +545,7 @@ def measure(cfg: Config, peers: bool = False) -> tuple[xr.Dataset, dict]:
         tp.update(_pipeline_vs_hand(cfg.pipeline_n, min(cfg.repeats, 3)))
         tp.update(_quadrature_rate(cfg.repeats))
         tp.update(_hertz_mindlin_512(cfg.repeats))
+        tp.update(batches_rate(cfg.repeats))
         tp.update(_tabulated_rates(cfg.repeats))
         tp.update(_whole_process(cfg))
         if solve is not None:
@@ -684,6 +700,10 @@ def _report(ds: xr.Dataset, tp: dict) -> str:
               f"Hertz–Mindlin partial-slip case through `generate(...).compute()` at rtol 1e-10: {hm:.2f} s on "
               f"the closed-form route, {tp['hertz_mindlin_512_quadrature_s']:.2f} s forced onto the integral "
               f"route (the principal stresses alone: {tp['principal_stresses_512_s']:.2f} s)."]
+    if "batches_hertz_interior_samples_per_cpu_s" in tp:
+        lines += [f"- `sf.batches` (procedural training data, no file), Hertz below the surface, six stresses: "
+                  f"{tp['batches_hertz_interior_samples_per_cpu_s']:.3g} samples per CPU second "
+                  f"({tp['batches_hertz_interior_samples_per_s']:.3g} per wall second; target 1e6 on one core)."]
     lines += [f"- Tabulated profiles (1000 samples) at rtol 1e-10: axisymmetric surface stresses "
               f"{tp['tabulated_axisymmetric_points_per_cpu_s']:.3g} points per CPU second."]
     lines += _graded_table(tp)

@@ -8,6 +8,7 @@
     sf.estimate("recipes/cone_figures.toml")        # dimensions, points, bytes, seconds before running
     sf.scenarios()                                  # names with one-line descriptions
     sf.compare("recipe.toml", "nodes.csv")          # your FE results against the reference at their nodes
+    sf.batches("recipe.toml", 4096, seed=0)         # (inputs, targets) NumPy batches at seeded Sobol points
 
 The names are imported on first use: xarray imports this package to list its backend
 (``engine="stressfields"``) whenever it opens a file, and that must not load the physics.
@@ -23,10 +24,10 @@ from .errors import OutputError  # noqa: E402
 #: public name -> the module that defines it
 _LAZY = {"generate": "api", "estimate": "api", "scenarios": "api", "describe": "api", "RecipeError": "recipe",
          "write": "writers", "to_netcdf": "writers", "export": "writers", "output_options": "writers",
-         "open_dataset": "reading", "compare": "comparison"}
+         "open_dataset": "reading", "compare": "comparison", "batches": "procedural"}
 
 __all__ = ["generate", "write", "to_netcdf", "export", "open_dataset", "output_options", "estimate", "scenarios",
-           "describe", "compare", "RecipeError", "OutputError", "__version__"]
+           "describe", "compare", "batches", "RecipeError", "OutputError", "__version__"]
 
 
 def __getattr__(name: str):

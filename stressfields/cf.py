@@ -20,8 +20,7 @@ ACCURACY_CONTRACT = """\
 - **Quadrature and series** (the recipe's `[method] rtol`): |error| ≤ rtol · max(|value|, S),
   where S is the variable's normalisation scale (its `normalisation` attribute): the mean contact
   pressure p_m for axisymmetric stresses, p_m/a for `dpdz`, p* for wavy pressures, Δ1 for wavy
-  displacements; for the graded family rtol is relative to |value|, and below the surface to
-  max(|value|, P) with P the pressure scale of the contact (docs/theory/graded.md (G67)).
+  displacements; for the graded family rtol is relative to |value|.
 - **`error_estimate`** (where a scenario offers it) is an upper bound of |error|, and
   **`converged`** is 1 exactly when `error_estimate` ≤ rtol · S.
 - **`validity`** is 0 where every value of the point meets the above. Any other code names the

@@ -1,4 +1,4 @@
-"""Command line: stressfields run | list | describe | validate | schema | export | hash | compare | bench.
+"""Command line: stressfields run | list | describe | validate | schema | export | hash | compare | suite | bench.
 
 The heavy libraries (xarray, dask, the writers) are imported inside the commands that compute or
 write: `--help`, `list`, `describe`, `schema` and `validate` need only the scenario declarations,
@@ -27,6 +27,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 from . import __version__
 from .errors import OutputError
 from .options import DTYPES, NONFINITE
+from .textfiles import write_text as _write_text
 
 #: the unit conversions of `compare` (comparison.UNITS, held equal by tests/test_compare.py)
 COMPARE_UNITS = ("Pa", "kPa", "MPa", "GPa", "m", "mm", "um", "N", "1")
@@ -172,10 +173,15 @@ def _parser() -> argparse.ArgumentParser:
     sch = sub.add_parser("schema", help="print data_schema.md (derived from the scenario declarations)")
     sch.set_defaults(func=_schema)
 
-    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, atomically")
+    exp = sub.add_parser("export", help="convert a Zarr store (e.g. from a cluster run) to NetCDF, atomically; or "
+                         "with --layout, a file to an ML-ready directory split by its recipe's [splits]")
     exp.add_argument("store", type=Path)
     exp.add_argument("-o", "--output", type=Path, required=True)
     exp.add_argument("--overwrite", action="store_true")
+    exp.add_argument("--layout", choices=("well", "parquet"), default=None,
+                     help="write the directory OUTPUT instead: well (The Well: data/{train,valid,test}/*.hdf5, "
+                     "stats.yaml, metadata YAML) or parquet (one row per point; pip install 'stressfields[ml]'); "
+                     "both with a Croissant card")
     exp.set_defaults(func=_export)
 
     hsh = sub.add_parser("hash", help="recompute a file's content hash and check it against the stored one")
@@ -197,6 +203,13 @@ def _parser() -> argparse.ArgumentParser:
     cmp.add_argument("--variables", nargs="+", default=None, help="compare only these value columns")
     cmp.add_argument("--overwrite", action="store_true", help="replace the report files")
     cmp.set_defaults(func=_compare)
+
+    ste = sub.add_parser("suite", help="the published reference suite (suite/ of a clone): build it into a "
+                         "directory, or verify a built one against the registered hashes")
+    ste.add_argument("action", choices=("build", "verify"), help="build: write every dataset (skipping those "
+                     "present whose hashes verify), key_values.csv and catalog.yaml; verify: recompute every hash")
+    ste.add_argument("directory", type=Path)
+    ste.set_defaults(func=_suite)
 
     bench = sub.add_parser("bench", help="chart accuracy against run time for every method (not a test)")
     bench.add_argument("-d", "--out-dir", type=Path, default=Path("docs/bench"),
@@ -252,23 +265,16 @@ def _has_matplotlib() -> bool:
     return importlib.util.find_spec("matplotlib") is not None
 
 
-def _write_text(path: Path, text: str) -> None:
-    """Atomically: a temporary beside the target, renamed onto it when complete."""
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
-    try:
-        tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, path)
-    except OSError as exc:
-        raise OutputError(f"{path}: {exc.strerror or exc}") from None
-    finally:
-        tmp.unlink(missing_ok=True)
-
-
 def _export(args) -> int:
     from .writers import export
 
     if not args.store.exists():
         raise UsageError(f"{args.store}: no such file or store")
+    if args.layout:
+        from .mlexport import export_layout
+
+        export_layout(args.store, args.output, args.layout, overwrite=args.overwrite)
+        return 0
     export(args.store, args.output, overwrite=args.overwrite)
     return 0
 
@@ -296,6 +302,23 @@ def _hash(args) -> int:
             print(f"{path}: {digest} MISMATCH (stored {stored})")
             bad += 1
     return 1 if bad else 0
+
+
+def _suite(args) -> int:
+    """Exit 0 when every dataset matches the registry, 1 when one differs (each said on stderr), 2 on
+    bad input (no suite, a directory that cannot be made)."""
+    from .suite import build, verify
+
+    if args.action == "verify" and not args.directory.is_dir():
+        raise UsageError(f"{args.directory}: no such directory (build the suite into it first)")
+    if args.action == "build":
+        _check_out_dir(args.directory, "DIRECTORY")
+    say = lambda line: print(line, file=sys.stderr)
+    problems = (build if args.action == "build" else verify)(args.directory, say=say)
+    for problem in problems:
+        print(f"MISMATCH {problem}", file=sys.stderr)
+    print(f"{args.action}: {'ok' if not problems else f'{len(problems)} dataset(s) differ from the registry'}")
+    return 1 if problems else 0
 
 
 def _bench(args) -> int:

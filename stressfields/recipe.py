@@ -15,6 +15,7 @@ A recipe::
     method = "auto"
     rtol = 1e-10
     [plot]                # optional: the quick-look PNG (see plot.py)
+    [splits]              # optional: train/valid/test of the ML exports (see splits.py)
     [points]              # optional: columns of equal length that vary together along `point`
     x = [0.1, 0.5, 2.0]
     z = [0.2, 0.0, 0.5]
@@ -52,7 +53,7 @@ from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
 from .options import output_option_problems
 
-TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot")
+TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot", "splits")
 #: the dimension along which the [points] columns vary together (last, after the swept ones)
 POINT = "point"
 OUTPUT_KEYS = ("variables", "chunks", "dtype", "compression", "nonfinite")
@@ -110,6 +111,8 @@ class Recipe:
     #: the [points] columns (declaration order): 1-D arrays of one length in ``values``, varying
     #: together along the dimension POINT, which comes after the swept ones
     points: tuple[str, ...] = ()
+    #: the checked [splits] table in canonical form (splits.py), {} if none: used by the ML exports
+    splits: dict = field(default_factory=dict)
 
     @property
     def dims(self) -> tuple[str, ...]:
@@ -305,6 +308,12 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
     title = data.get("title", f"stressfields {name}")
     if not isinstance(title, str):
         problems.append(f"title = {show(title)} must be a string")
+    split_spec = {}
+    if "splits" in data and not problems:
+        from .splits import problems as split_problems
+
+        found, split_spec = split_problems(data["splits"], scen, values, variables, physical)
+        problems += found
     if plot and points:
         problems.append("[plot] draws lines and maps over swept parameters; it is not available with [points]")
     elif not problems:
@@ -320,12 +329,14 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
     }
     if storage:                     # only when given: recipes without them keep their hash
         canonical_dict["output"].update(sorted(storage.items()))
+    if split_spec:                  # likewise: recipes without [splits] keep their hash
+        canonical_dict["splits"] = split_spec
     if points:                      # likewise; with the file (name, SHA-256) or the sample's spec
         canonical_dict["points"] = {"columns": sorted(points), "n": len(values[points[0]]),
                                     "sha256": points_digest({k: values[k] for k in points}), **source}
     canonical = json.dumps(canonical_dict, sort_keys=True, separators=(",", ":"))
     return Recipe(scen, values, swept, physical, variables, chunks, method, rtol, title,
-                  text if text is not None else canonical, canonical, dict(plot), storage, points)
+                  text if text is not None else canonical, canonical, dict(plot), storage, points, split_spec)
 
 
 def points_digest(columns: Mapping[str, np.ndarray]) -> str:

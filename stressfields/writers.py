@@ -177,7 +177,8 @@ def _converter(name: str, single: bool, upward: bool, no_inf: bool):
     def convert(block: np.ndarray) -> np.ndarray:
         out = block
         if single:
-            out = block.astype(np.float32)
+            with np.errstate(over="ignore"):     # an overflow is refused just below
+                out = block.astype(np.float32)
             overflow = np.isinf(out) & np.isfinite(block)
             if overflow.any():    # a finite value must never read as unbounded
                 raise OutputError(f"{name}: the finite value {block[overflow].flat[0]:.6g} exceeds the float32 "

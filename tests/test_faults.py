@@ -74,6 +74,7 @@ def _started(proc, folder):
         time.sleep(0.005)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("mode,sig,delay", TRIALS)
 def test_killed_run_leaves_nothing_or_a_complete_target(tmp_path, whole, mode, sig, delay):
     recipe, digest = whole
@@ -120,6 +121,7 @@ def test_stale_temporaries_of_dead_runs_are_removed_and_live_ones_kept(tmp_path)
         sleeper.wait()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("suffix", [".nc", ".zarr"])
 def test_two_concurrent_runs_onto_one_target(tmp_path, suffix):
     pytest.importorskip("zarr")

@@ -4,6 +4,7 @@ import json
 
 import netCDF4
 import numpy as np
+import pytest
 
 from stressfields import cli
 from stressfields.hashing import file_hash
@@ -21,6 +22,7 @@ chunks = { nu = 1 }
 """
 
 
+@pytest.mark.slow
 def test_sigkill_then_resume(tmp_path):
     recipe = tmp_path / "r.toml"
     recipe.write_text(RECIPE)

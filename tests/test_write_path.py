@@ -215,6 +215,7 @@ chunks = { mu = 1 }
 """
 
 
+@pytest.mark.slow
 def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part(tmp_path, monkeypatch):
     import netCDF4
 
@@ -240,6 +241,7 @@ def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part
     assert not (tmp_path / "out.nc.parts").exists()
 
 
+@pytest.mark.slow
 def test_processes_write_zarr_and_refuse_netcdf_before_any_work(tmp_path, capsys):
     """Other processes can write a Zarr store's chunks, not an HDF5 file's: `--scheduler processes`
     with a NetCDF target is one line and exit 2, with nothing computed or left behind."""

@@ -1,7 +1,23 @@
 """The validity flag every family writes beside its fields (docs/theory/README.md, conventions)."""
 from __future__ import annotations
 
+import functools
+
 import numpy as np
+
+
+def quiet(kernel):
+    """Run ``kernel`` with floating-point warnings off.
+
+    A kernel's overflow, 0/0 or inf - inf is not news for its caller: the value it produces (+-inf
+    where the exact limit is infinite, NaN where it depends on the direction) is the report, and the
+    validity flag names its cause. Warnings would only repeat that, once per dask block.
+    """
+    @functools.wraps(kernel)
+    def silent(*args, **kwargs):
+        with np.errstate(all="ignore"):
+            return kernel(*args, **kwargs)
+    return silent
 
 
 def validity_flag(*arrays: np.ndarray) -> np.ndarray:

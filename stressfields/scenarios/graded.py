@@ -66,11 +66,12 @@ MATERIAL = (E0, C0, NU, K)
 Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface); given, the "
               "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k) (the "
               "paraboloid at k > 0)", low=0.0, high=1e6)
-POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu) or 'holl_ratio' (nu = 1/(2+k), "
-                      "following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
-                      default="given", choices=("given", "holl_ratio"), sweepable=False)
+# no default: a recipe without it is recorded (and hashed) as before the choice existed
+POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu; also when omitted) or 'holl_ratio' "
+                      "(nu = 1/(2+k), following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
+                      choices=("given", "holl_ratio"), sweepable=False)
 NU_N = Parameter(NU.name, NU.meaning, default=NU.default, low=NU.low, low_open=True, high=NU.high,
-                 when={"poisson": ("given",)})
+                 when={"poisson": (None, "given")})
 MATERIAL_N = (E0, C0, POISSON_N, NU_N, K)
 STRESS_NAMES = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz", "von_mises", "sigma_1", "sigma_2", "sigma_3",
                 "tau_max")

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from ..flags import quiet
 
 from ..quadrature import gauss_jacobi, gauss_legendre, group_by
 from .interior import _live, _Nodes, _superpose, check_arguments, flat_arguments, interior_orders
@@ -275,6 +276,7 @@ def _sum(x, y, z, b, nu, profile, rtol, unit, kernel):
 
 # -- the entry point ---------------------------------------------------------------------------
 
+@quiet
 def displacements(names, profile: Profile, x, y, z, *, a, nu, mu, ux0, c, mu_kernel, method: str = "auto",
                   rtol: float = 1e-10) -> dict[str, np.ndarray]:
     """Displacements u_x, u_y, u_z divided by the indentation depth delta at (x, y, z), z >= 0 the

@@ -26,6 +26,7 @@ from typing import Callable, Iterable
 
 import numpy as np
 
+from ..flags import quiet
 from ..flags import validity_flag
 from ..invariants import principal_stresses, singular_limits, von_mises
 # the stress components and principal stresses are defined in ``physics.names``: the scenario
@@ -62,6 +63,7 @@ _VALUED = STRESS + INVARIANTS + ("dpdz",)
 OUTSIDE, STICK, SLIP, NO_TRACTION = 0, 1, 2, 3
 
 
+@quiet
 def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, ux0,
            method: str = "auto", rtol: float = 1e-10, scale=1.0,
            dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:
@@ -213,6 +215,7 @@ def _add(normal: dict, on: np.ndarray, keys, tangential: Callable[[], dict]) -> 
     return out
 
 
+@quiet
 def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, amplitude,
                    history, step, method: str = "auto", rtol: float = 1e-10, scale=1.0,
                    dpdz_scale=None) -> tuple[dict[str, np.ndarray], Route]:

@@ -34,6 +34,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..flags import quiet
 from ..quadrature import gauss_jacobi, gauss_legendre, group_by
 from .interior_cone import cone_dpdz_unit, cone_unit
 from .interior_hertz import COMPONENTS, _geometry, _one_minus_m_atan, hertz_unit, punch_radial, punch_unit
@@ -85,6 +86,7 @@ def interior_orders(rtol: float) -> tuple[int, float]:
     return _ORDERS[-1][1]  # pragma: no cover - guarded above
 
 
+@quiet
 def interior_stress(x, y, z, a, nu, profile: Profile, *, method: str = "auto",
                     rtol: float = 1e-10) -> dict[str, np.ndarray]:
     """Stress tensor / E* at (x, y, z), z >= 0 the depth, under a rigid axisymmetric ``profile``
@@ -551,6 +553,7 @@ def _integrate_stress_direct(nd: _Nodes, profile) -> dict[str, np.ndarray]:
 
 # -- the depth derivative of the hydrostatic pressure (I24)-(I28) ------------------------------
 
+@quiet
 def interior_dpdz(x, y, z, a, nu, profile: Profile, *, method: str = "auto", rtol: float = 1e-10) -> np.ndarray:
     """d p_h/dz / (E*/length) at (x, y, z), z >= 0, p_h = -trace(sigma)/3, under the rigid
     axisymmetric ``profile`` pressed to the contact radius ``a`` (normal load, no friction);
@@ -597,6 +600,7 @@ def _f_prime(M):
     return np.where(M <= 1.0, near, far), F
 
 
+@quiet
 def hertz_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
     """d p_h/dz of the Hertz field, divided by p0/a, at coordinates divided by the contact radius:
     p_h = (2/3)(1 + nu) N F(M) (I24) and its z-derivative (I25)-(I26).  Finite for z > 0 and on
@@ -613,6 +617,7 @@ def hertz_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
     return (2.0 / 3.0) * (1.0 + nu) * (n_z * F + N * fp * m_z)
 
 
+@quiet
 def punch_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
     """d p_h/dz of the flat punch of radius 1 pressed to depth 1 into a half-space with E* = 1, at
     coordinates divided by the punch radius: p_h = 2(1 + nu) N/(3 pi S) (I24) and (I27).  Finite

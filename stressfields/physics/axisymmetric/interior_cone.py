@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from ..flags import quiet
 
 from .interior_hertz import _coords, _geometry
 
@@ -78,6 +79,7 @@ def _cone_scalars(x, y, z, nu):
     return dict(L=L, J=J, Sigma=trace - zz, zz=zz, E=E, Er2=e0r2 + evr2, T=T, r=r)
 
 
+@quiet
 def cone_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     """Stress tensor below the surface of a rigid cone pressed to the contact radius 1, divided by
     E* tan(theta)/2, at coordinates divided by the contact radius; docs/theory/interior.md
@@ -99,6 +101,7 @@ def cone_unit(x, y, z, nu) -> dict[str, np.ndarray]:
             "yz": y * s["T"]}
 
 
+@quiet
 def cone_dpdz_unit(x, y, z, nu) -> np.ndarray:
     """d p_h/dz of the cone, divided by E* tan(theta)/(2a), at coordinates divided by the contact
     radius: p_h = (2/3)(1 + nu) L (I46), d L/dz = M/S - 1/R written as

@@ -19,6 +19,8 @@ import math
 
 import numpy as np
 
+from ..flags import quiet
+
 __all__ = ["COMPONENTS", "hertz_unit", "punch_unit", "sliding_unit", "sliding_punch_unit"]
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
@@ -111,6 +113,7 @@ def _coords(x, y, z):
     return x, y, z
 
 
+@quiet
 def hertz_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     """Hertz (paraboloid) stress tensor below the surface, divided by p0, at coordinates divided by
     the contact radius; docs/theory/interior.md (I5)-(I9) (Huber 1904, Hamilton 1983, Johnson 1985
@@ -150,6 +153,7 @@ def _tt_minus_dtt(g, s, nu):
     return (1.0 - 2.0 * nu) * a - 0.5 * nh
 
 
+@quiet
 def punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
     """Flat punch of radius 1 pressed to depth 1 into a half-space with E* = 1: the stress tensor
     at coordinates divided by the punch radius, (1/pi)[S - (x d/dx + y d/dy + z d/dz) S] with S
@@ -353,6 +357,7 @@ def _sliding_punch_scalars(g):
     )
 
 
+@quiet
 def sliding_punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
     """The sliding flat punch: stress tensor below the surface under the tangential traction
     q = 1/(pi sqrt(1 - r^2)) along +x (sigma_xz = -q at z = 0; the friction traction mu p of a
@@ -426,6 +431,7 @@ def mns(rm1, zs, z2):
     return S, np.where(big, root, other), np.where(big, other, root)
 
 
+@quiet
 def punch_radial(rs, zs, rm1, nu):
     """The flat punch of radius 1 (depth 1, E* = 1) as its four radial functions, times pi:
     Sigma = sigma_rr + sigma_tt, sigma_zz, E = (sigma_rr - sigma_tt)/r^2 and T = sigma_rz/r at

@@ -33,6 +33,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from ..flags import quiet
 
 from .interior import (_direction, _Flat, _live, _Nodes, _superpose, _superpose_flat, check_arguments,
                        dpdz_integrator, flat_arguments)
@@ -46,6 +47,7 @@ __all__ = ["COMPONENTS", "interior_stress_tangential", "interior_dpdz_tangential
 METHODS = ("auto", "closed", "quadrature")
 
 
+@quiet
 def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method: str = "auto",
                                rtol: float = 1e-10) -> dict[str, np.ndarray]:
     """Tangential part of the stress tensor / E* at (x, y, z), z >= 0 the depth, for the contact
@@ -223,6 +225,7 @@ def sliding_punch_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
 _SLIDING_DPDZ_KERNEL = (dpdz_integrator(sliding_punch_dpdz_unit, sliding_dpdz_unit), ("dpdz",))
 
 
+@quiet
 def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method: str = "auto",
                              rtol: float = 1e-10) -> np.ndarray:
     """Tangential part of d p_h/dz / (E*/length) at (x, y, z), z >= 0, p_h = -trace(sigma)/3;

@@ -36,6 +36,7 @@ import math
 import numpy as np
 from scipy.special import gammaln
 
+from ..flags import quiet
 from ..quadrature import orders
 from . import integrals, normal, tangential
 from .common import arccosh_ratio
@@ -284,6 +285,7 @@ def _stress_chunk(profile, closed, ords, comps, x, y, a, c, nu, mu):
     return res
 
 
+@quiet
 def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method="closed", rtol=1e-10):
     """Surface (z = 0) stress tensor / E* under normal load and Cattaneo–Mindlin tangential load.
 
@@ -365,6 +367,7 @@ def _dpdz_origin(profile, closed, ords, a, c, nu, mu):
     return dp
 
 
+@quiet
 def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10):
     """d p_h / dz at z = 0+ (z into the material), divided by E* (units 1/length).
 

@@ -1,0 +1,130 @@
+"""Procedural training data: `batches(recipe, batch_size, seed)` yields (inputs, targets) NumPy arrays at
+seeded Sobol or uniform points, computed on the fly by the scenario's kernels (no dataset, no dask,
+no file).
+
+The recipe is an ordinary one whose ``[points.sample]`` table gives the box to sample
+(``{ n = ..., method = "sobol" | "uniform", x = [low, high], nu = [low, high], ... }``; its ``seed``
+is replaced by the ``seed`` given here): ``n`` points are drawn in all, in batches of
+``batch_size`` (the last one shorter). The stream is the one `recipe.draw_sample` draws for the
+same specification, cut into batches: scipy's scrambled Sobol sequence (or NumPy's PCG64 uniform
+stream) continues from batch to batch, and every kernel is evaluated point by point, so the same
+(recipe, seed) gives the same bytes whatever the batch size, and the concatenated batches equal
+``sf.generate`` of the same recipe bit for bit (tests/test_batches.py). Latin hypercube samples
+(``lhs``) are not a stream and are refused.
+
+``inputs`` has one column per sampled parameter (alphabetical order, as `draw_sample` gives them),
+``targets`` one per requested float variable, then the ``validity`` flag (as a float) where the
+scenario has one; the names are in ``Batches.input_names`` and ``Batches.target_names``.
+"""
+from __future__ import annotations
+
+import json
+import tomllib
+import warnings
+from pathlib import Path
+from typing import Iterator, Mapping
+
+import numpy as np
+
+STREAMABLE = ("sobol", "uniform")
+#: a stream is not held in memory: its length is bounded only by what a run can take (scipy's Sobol
+#: engine draws at most 2^32 points before the sequence repeats)
+MAX_SAMPLES = 2 ** 32
+
+
+class Batches:
+    """An iterable of (inputs, targets) batches; iterate it again to get the same bytes again."""
+
+    def __init__(self, recipe: str | Path | Mapping, batch_size: int, seed: int):
+        from .recipe import RecipeError, load
+
+        if isinstance(batch_size, bool) or not isinstance(batch_size, int) or batch_size < 1:
+            raise RecipeError([f"batch_size = {batch_size!r} must be an integer >= 1"], "batches")
+        if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+            raise RecipeError([f"seed = {seed!r} must be an integer >= 0"], "batches")
+        data = _as_dict(recipe)
+        label = str(recipe) if not isinstance(recipe, Mapping) else "recipe"
+        sample = data.get("points", {}).get("sample") if isinstance(data.get("points"), Mapping) else None
+        if not isinstance(sample, Mapping):
+            raise RecipeError(["batches need a [points.sample] table: the box to sample, e.g. { n = 1000000, "
+                               'method = "sobol", x = [-2.0, 2.0], z = [0.0, 3.0] }'], label)
+        if sample.get("method", "sobol") not in STREAMABLE:
+            raise RecipeError([f"points.sample.method = {sample.get('method')!r}: batches stream 'sobol' or "
+                               "'uniform' points (a Latin hypercube is drawn whole, not as a stream)"], label)
+        n = sample.get("n")
+        if isinstance(n, bool) or not isinstance(n, int) or not 1 <= n <= MAX_SAMPLES:
+            raise RecipeError([f"points.sample.n = {n!r} must be an integer in [1, {MAX_SAMPLES:.0e}] (the points "
+                               "drawn in all)"], label)
+        # checked as a recipe of one point: every key, range and variable, nothing large drawn
+        self.recipe = load({**data, "points": {"sample": {**sample, "n": 1, "seed": seed}}})
+        self.spec = {**json.loads(self.recipe.canonical)["points"]["sample"], "n": n, "seed": seed}
+        scen = self.recipe.scenario
+        self.batch_size = batch_size
+        self.input_names = tuple(self.spec["ranges"])
+        floats = [v for v in self.recipe.variables if scen.variable(v).dtype.startswith("float")]
+        flag = [v.name for v in scen.variables_in(self.recipe.physical) if v.name == "validity"]
+        self.target_names = tuple(floats + flag)
+        self._low = np.array([self.spec["ranges"][k][0] for k in self.input_names])
+        self._high = np.array([self.spec["ranges"][k][1] for k in self.input_names])
+
+    def __len__(self) -> int:
+        return -(-self.spec["n"] // self.batch_size)
+
+    def __iter__(self) -> Iterator[tuple[np.ndarray, np.ndarray]]:
+        draw = _stream(self.spec["method"], len(self.input_names), self.spec["seed"])
+        left = self.spec["n"]
+        while left > 0:
+            size = min(self.batch_size, left)
+            left -= size
+            # as recipe.draw_sample maps its unit sample: low + u (high - low), clipped into the box
+            inputs = np.clip(self._low + draw(size) * (self._high - self._low), self._low, self._high)
+            yield inputs, self.evaluate(inputs)
+
+    def evaluate(self, inputs: np.ndarray) -> np.ndarray:
+        """The targets at the rows of ``inputs`` (columns as ``input_names``)."""
+        recipe = self.recipe
+        params = {k: v for k, v in recipe.values.items() if k not in recipe.points}
+        params.update({k: np.ascontiguousarray(inputs[:, i]) for i, k in enumerate(self.input_names)})
+        options = {"method": recipe.method, "rtol": recipe.rtol, "physical": recipe.physical, "sweep": params}
+        with np.errstate(all="ignore"):        # singular points give inf/NaN on purpose, flagged in validity
+            result = recipe.scenario.evaluate(list(self.target_names), params, options)
+        out = np.empty((inputs.shape[0], len(self.target_names)))
+        for j, name in enumerate(self.target_names):
+            out[:, j] = np.broadcast_to(np.asarray(result[name], dtype=np.float64), (inputs.shape[0],))
+        return out
+
+
+def batches(recipe: str | Path | Mapping, batch_size: int, seed: int) -> Batches:
+    """(inputs, targets) batches of ``batch_size`` points of the recipe's ``[points.sample]`` box,
+    drawn with ``seed`` and computed on the fly; see the module docstring."""
+    return Batches(recipe, batch_size, seed)
+
+
+def _stream(method: str, dims: int, seed: int):
+    """draw(k) -> the next k rows of the unit sample `recipe.draw_sample` would draw for (method, seed)."""
+    rng = np.random.default_rng(seed)
+    if method == "uniform":
+        return lambda k: rng.random((k, dims))
+    from scipy.stats import qmc
+
+    engine = qmc.Sobol(dims, scramble=True, seed=rng)
+
+    def draw(k):
+        with warnings.catch_warnings():     # balance properties: as in recipe.draw_sample
+            warnings.filterwarnings("ignore", message=".*balance properties.*", category=UserWarning)
+            return engine.random(k)
+    return draw
+
+
+def _as_dict(recipe) -> dict:
+    if isinstance(recipe, Mapping):
+        return dict(recipe)
+    from .recipe import RecipeError, _check_shape, _read_text
+
+    path = Path(recipe)
+    text = _read_text(path, str(path))
+    _check_shape(text, str(path))
+    try:
+        return tomllib.loads(text)
+    except ValueError as exc:
+        raise RecipeError([f"not valid TOML: {exc}"], str(path)) from None
