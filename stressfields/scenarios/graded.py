@@ -524,6 +524,9 @@ def _check_tangential(values, physical, method):
     if (values.get("z") is not None or values.get("x") is not None) and np.any(np.asarray(values.get("k")) > 0.0):
         problems.append(f"z or x is given with k = {float(np.max(values['k']))!r}: below the surface under tangential "
                         "load the graded family solves k = 0")
+    elif (values.get("z") is not None or values.get("x") is not None) and values.get("profile") == "tabulated":
+        problems.append("z or x is given with profile = 'tabulated': below the surface under tangential load the "
+                        "graded family solves the parabolic, conical and power-law profiles at k = 0")
     if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
         return problems
     from ..physics import graded as gp

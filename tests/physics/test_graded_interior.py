@@ -222,6 +222,9 @@ def test_unsupported_cases_and_negative_depth_are_refused_in_one_line():
         _stress(0.5, 0.5, k=0.5, nu=0.3)
     with pytest.raises(ValueError, match=r"profile = 'conical' with k = 0\.5"):
         _stress(0.5, 0.5, k=0.5, nu=0.4, profile=gp.Indenter.conical(0.1))
+    with pytest.raises(ValueError, match=r"profile = 'tabulated' is not solved below the surface"):
+        r = np.linspace(0.0, 2e-3, 8)
+        _stress(0.5, 0.5, k=0.0, nu=0.3, profile=gp.Indenter.tabulated(r, r ** 2 / (2 * R)))
     with pytest.raises(ValueError, match=r"z = -0\.1 is outside the allowed range z >= 0"):
         _stress(0.5, -0.1, k=0.0, nu=0.3)
 

@@ -60,21 +60,25 @@ def check_supported(k, nu, kind: str) -> None:
         kb, nb = float(k[~ok].flat[0]), float(nu[~ok].flat[0])
         raise ValueError(f"nu = {nb!r} with k = {kb!r} is not solved below the surface: {SUPPORTED}; "
                          f"here 1/(2+k) = {1.0 / (2.0 + kb):.12g}")
+    if kind == "tabulated":
+        # its spline (end conditions of profiles.Tabulated) is not the axisymmetric family's, so the k = 0
+        # interior would not meet the surface pressure of this family
+        raise ValueError(f"profile = 'tabulated' is not solved below the surface: {SUPPORTED}, for the "
+                         "parabolic, conical and power-law profiles at k = 0")
     if kind != "parabolic" and np.any(k > 0.0):
         raise ValueError(f"profile = {kind!r} with k = {float(np.max(k))!r} is not solved below the surface: "
                          f"{SUPPORTED}")
 
 
 def _axisymmetric_profile(profile: Indenter, geometry):
+    """The axisymmetric family's profile of a power law (tabulated profiles are refused by ``check_supported``)."""
     from .. import axisymmetric as ax
 
     if profile.kind == "parabolic":
         return ax.paraboloid(geometry[0])
     if profile.kind == "conical":
         return ax.cone(geometry[0])
-    if profile.kind == "power_law":
-        return ax.power_law(geometry[0], geometry[1])
-    return ax.tabulated(profile.table.r, profile.table.f)
+    return ax.power_law(geometry[0], geometry[1])
 
 
 def interior_fields(names: Sequence[str], profile: Indenter, *, a, rho, z, k, nu, E0, c0, delta_gamma=None,
@@ -304,6 +308,9 @@ def tangential_interior_fields(names: Sequence[str], profile: Indenter, *, a, x,
     if np.any(K != 0.0):
         raise ValueError(f"k = {float(K[K != 0.0][0])!r} is not solved below the surface under tangential load: "
                          "the graded family solves k = 0 there")
+    if profile.kind == "tabulated":
+        raise ValueError("profile = 'tabulated' is not solved below the surface under tangential load: the "
+                         "parabolic, conical and power-law profiles at k = 0")
     cN = c_N_star(K, NU, E, C0, E2, NU2)
     flat = Indenter(profile.kind, tuple(G), profile.table)
     keys = np.stack(G, axis=-1) if G else np.zeros((A.size, 0))
