@@ -16,7 +16,7 @@ from conftest import load_reference
 def test_against_the_mpmath_double_integral_of_the_point_load_kernel(rtol):
     """|error| <= rtol times the pressure amplitude (1 here) at every stored point and component."""
     ref = load_reference("graded_interior")["points"]
-    assert len(ref) >= 200 and max(p["err"] for p in ref) < 1e-12
+    assert len(ref) >= 200 and max(p["err"] for p in ref) < 1e-13     # (values: 12 significant digits)
     rho, z, k, e = (np.array([p[key] for p in ref]) for key in ("rho", "z", "k", "e"))
     got = holl.disc_stress(rho, z, k, e, rtol)
     for c in holl.COMPONENTS:
