@@ -239,7 +239,30 @@ def _graded(cfg: Config) -> dict:
         scale = float(np.max(np.abs(ref))) if scale is None else scale
         variants = [(CLOSED, 0.0, closed)] + [(QUAD, rt, lambda rt=rt, q=quad: q(rt)) for rt in RTOLS]
         out[f"graded k = 0.5 paraboloid: {name}"] = _rows(ref, scale, variants, pts, cfg.repeats, quad(REF_RTOL))
+    out.update(_graded_interior(cfg))
     return out
+
+
+def _graded_interior(cfg: Config) -> dict:
+    """The 2-D quadrature of the Holl point-load field below the surface (physics.graded.holl) at k = 0,
+    where its kernel is Boussinesq's at nu = 1/2: held against the closed-form Hertz field at nu = 1/2
+    (an independent route), stresses per unit p0, points r/a in [0, 2], z/a in [0.01, 2]."""
+    from stressfields.physics.axisymmetric.interior_hertz import hertz_unit
+    from stressfields.physics.graded import holl
+
+    m = max(40, cfg.points // 10)
+    rng = np.random.default_rng(29)
+    r, z = 2.0 * rng.random(m), 10.0 ** rng.uniform(-2.0, np.log10(2.0), m)
+    h = hertz_unit(r, 0.0 * r, z, 0.5)
+    ref = np.concatenate([h["xx"], h["yy"], h["zz"], h["xz"]])
+
+    def run(rt):
+        s = holl.disc_stress(r, z, 0.0, 0.5, rt)
+        return np.concatenate([s["rr"], s["tt"], s["zz"], s["rz"]])
+
+    variants = [(QUAD, rt, lambda rt=rt: run(rt)) for rt in RTOLS]
+    return {"graded below the surface (Holl 2-D route, k = 0 vs Hertz nu = 1/2): four stresses":
+            _rows(ref, 1.0, variants, m, cfg.repeats)}
 
 
 def _wavy(cfg: Config) -> dict:

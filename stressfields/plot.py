@@ -15,8 +15,10 @@ Maps (``map_plane``): over x and y where the recipe sweeps both; otherwise, wher
 the depth z, a section below the surface: filled contours in the x-z plane, depth downwards, and,
 where the file holds the variable's per-case peak (``<name>_peak``, ``_peak_r``, ``_peak_depth``),
 that peak marked and quoted from the file (``plot_kind``: a recipe sweeping x and z whose table asks
-for no line, neither plot.x nor plot.hue, gets this section). A line along z is drawn as a depth
-profile, depth downwards.
+for no line, neither plot.x nor plot.hue, gets this section). A recipe sweeping the radius rho = r/a
+and z (the graded scenarios) gets the same section over rho (peaks ``_peak_rho``), one panel per
+value of its first other swept parameter (e.g. k: the graded field beside the homogeneous one). A
+line along z is drawn as a depth profile, depth downwards.
 
 Physical values are drawn in engineering units (`engineering`: MPa or GPa, µm or mm, chosen from the
 data range), panel titles are the variables' short ``long_name`` in full, and flags (``region``,
@@ -146,7 +148,7 @@ def _figure(plt, ds: xr.Dataset, recipe):
     plane = map_plane(swept) if kind == "map" else None
     if kind == "map" and plane is None:     # not a table recipe.py accepts: draw the values
         return _text_figure(plt, ds, recipe)
-    xname = spec.get("x", "x" if kind == "map" else (swept[-1] if swept else None))
+    xname = spec.get("x", plane[0] if kind == "map" else (swept[-1] if swept else None))
     hue = spec.get("hue")
     dims = {n: v.dims for n, v in ds.variables.items()}      # coordinates too: plot.x may be one (ux0)
     along = plot_along(xname, hue, swept, dims) if kind == "line" and xname else None
@@ -155,32 +157,38 @@ def _figure(plt, ds: xr.Dataset, recipe):
              if n in ds.data_vars and need <= set(ds[n].dims)][:MAX_PANELS]
     if not names:
         return _text_figure(plt, ds, recipe)
-    ncol = min(3, len(names))
-    nrow = -(-len(names) // ncol)
+    panels = [(n, {}) for n in names]
+    if plane == ("rho", "z"):        # one panel per value of the first other swept parameter, side by side
+        other = [d for d in swept if d not in plane and d in ds[names[0]].dims][:1]
+        panels = [(n, {other[0]: i} if other else {}) for n in names
+                  for i in range(ds.sizes[other[0]] if other else 1)][:MAX_PANELS]
+    ncol = min(3, len(panels))
+    nrow = -(-len(panels) // ncol)
     fig, axes = plt.subplots(nrow, ncol, figsize=(4.6 * ncol + 1.0, 3.8 * nrow + 0.4), squeeze=False)
-    for ax, name in zip(axes.flat, names):
+    for ax, (name, at) in zip(axes.flat, panels):
         if kind == "map":
-            _map(ax, ds, name, plane)
+            _map(ax, ds, name, plane, at)
         else:
             _lines(ax, ds, name, xname, along, hue, spec.get("marker"))
             if "ylim" in spec:
                 ax.set_ylim(*spec["ylim"])
-        ax.set_title(textwrap.shorten(ds[name].attrs.get("long_name", name), TITLE_CHARS, placeholder=" ..."),
-                     fontsize=7)
-    for ax in list(axes.flat)[len(names):]:
+        where = "".join(f"{d} = {float(ds[d][i]):g}: " for d, i in at.items())     # first: never cut off
+        ax.set_title(textwrap.shorten(where + ds[name].attrs.get("long_name", name), TITLE_CHARS,
+                                      placeholder=" ..."), fontsize=7)
+    for ax in list(axes.flat)[len(panels):]:
         ax.set_visible(False)
     return fig
 
 
-def _map(ax, ds, name, plane=("x", "y")):
+def _map(ax, ds, name, plane=("x", "y"), at=None):
     da = ds[name]
-    hold = {d: 0 for d in da.dims if d not in plane}
+    hold = {d: (at or {}).get(d, 0) for d in da.dims if d not in plane}
     da = da.isel(hold)
     if "flag_values" in da.attrs:
         _flags(ax, ds, da, plane)
         return
-    if plane == ("x", "z"):
-        _section(ax, ds, da, hold)
+    if plane[1] == "z":
+        _section(ax, ds, da, hold, plane[0])
         return
     da.transpose("y", "x").plot(ax=ax, robust=True, cbar_kwargs={"label": _label(da)})
     ax.set_aspect("equal")
@@ -235,15 +243,15 @@ def _lines(ax, ds, name, xname, along, hue, marker):
     ax.set_ylabel(ylabel)
 
 
-def _section(ax, ds, da, hold):
-    """Filled contours of `da` in the x-z plane, depth downwards, with the file's peak marked."""
-    values = np.ma.masked_invalid(da.transpose("z", "x").values)
+def _section(ax, ds, da, hold, across="x"):
+    """Filled contours of `da` in the x-z (or rho-z) plane, depth downwards, with the file's peak marked."""
+    values = np.ma.masked_invalid(da.transpose("z", across).values)
     if not values.count():
         ax.text(0.5, 0.5, "no finite values", ha="center", va="center", transform=ax.transAxes)
         return
-    peak = _peak(ds, da.name, hold)
+    peak = _peak(ds, da.name, hold, across)
     levels, extend = _levels(values, peak)
-    x, z = ds["x"].values, ds["z"].values
+    x, z = ds[across].values, ds["z"].values
     filled = ax.contourf(x, z, values, levels=levels, extend=extend, cmap="viridis")
     ax.contour(x, z, values, levels=levels, colors="k", linewidths=0.4)
     above = levels[-1] * np.sqrt(2.0) ** np.arange(1, 9)      # beyond the colours: lines that crowd
@@ -253,7 +261,7 @@ def _section(ax, ds, da, hold):
     bar = ax.figure.colorbar(filled, ax=ax, orientation="horizontal", pad=0.28, aspect=40)
     bar.set_label(_bar_label(da), fontsize=7)
     bar.ax.tick_params(labelsize=7)
-    p0 = _centre_pressure(ds, hold)
+    p0 = _centre_pressure(ds, hold, across)
     if p0 is not None:          # the textbook scale: the centre pressure p(0) of the same case
         top = bar.ax.secondary_xaxis("top", functions=(lambda v: v / p0, lambda v: v * p0))
         top.set_xlabel(f"{da.name} / p(0), centre pressure p(0) = -sigma_zz(0, 0, 0) = {p0:#.4g} "
@@ -262,10 +270,10 @@ def _section(ax, ds, da, hold):
     ax.set_xlim(x.min(), x.max())
     ax.set_ylim(z.max(), z.min())               # depth downwards
     ax.set_aspect("equal")
-    ax.set_xlabel(_label(ds["x"]))
+    ax.set_xlabel(_label(ds[across]) if across == "x" else "r / a (rho)")
     ax.set_ylabel(_label(ds["z"]))
     if peak is not None:
-        _mark(ax, ds, da, peak, p0, hold)
+        _mark(ax, ds, da, peak, p0, hold, across)
 
 
 def _levels(values, peak):
@@ -291,10 +299,13 @@ def _levels(values, peak):
     return levels, "max" if above else "neither"
 
 
-def _peak(ds, name, hold) -> dict | None:
+def _peak(ds, name, hold, across="x") -> dict | None:
     """The file's peak of `name` for the shown case and where it sits (on y = 0), or None."""
-    # the position along x: the radius r of an axisymmetric field, x itself for a plane one (wavy)
-    along = f"{name}_peak_r" if f"{name}_peak_r" in ds.data_vars else f"{name}_peak_x"
+    # the position across the section: rho (graded), r (an axisymmetric field), x (a plane one: wavy)
+    if across == "rho":
+        along = f"{name}_peak_rho"
+    else:
+        along = f"{name}_peak_r" if f"{name}_peak_r" in ds.data_vars else f"{name}_peak_x"
     keys = (f"{name}_peak", along, f"{name}_peak_depth")
     if not all(k in ds.data_vars for k in keys) or _scalar(ds, "y", hold, 0.0) != 0.0:
         return None                             # no peak in the file, or the plane is not y = 0
@@ -311,29 +322,31 @@ def _scalar(ds, name, hold, default=None):
     return da.isel({d: i for d, i in hold.items() if d in da.dims}).values.item()
 
 
-def _centre_pressure(ds, hold) -> float | None:
+def _centre_pressure(ds, hold, across="x") -> float | None:
     """p(0) = -sigma_zz at the surface centre x = y = z = 0 of the shown case, if the file holds it
     and it is finite (Hertz: p0 = 3/2 p_m)."""
     if "sigma_zz" not in ds.data_vars or _scalar(ds, "y", hold, 0.0) != 0.0:
         return None
     s = ds["sigma_zz"].isel({d: i for d, i in hold.items() if d in ds["sigma_zz"].dims})
-    hit = (s["x"] == 0.0) & (s["z"] == 0.0)
+    hit = (s[across] == 0.0) & (s["z"] == 0.0)
     if int(hit.sum()) != 1:
         return None
     p0 = -float(s.where(hit, drop=True).values.ravel()[0])
     return p0 if np.isfinite(p0) and p0 > 0.0 else None
 
 
-def _mark(ax, ds, da, peak, p0, hold):
+def _mark(ax, ds, da, peak, p0, hold, across="x"):
     """The peak of the file: one marker, two at x = +-r under normal load (an axisymmetric field:
-    the file gives r >= 0), and its value and position in the legend."""
+    the file gives r >= 0; one on a rho-z section), and its value and position in the legend."""
     if peak["flag"] == 2 or not np.isfinite(peak["x"]):       # NaN: no point to mark
         return
     load = max(_scalar(ds, k, hold, 0.0) for k in ("ux0", "fx", "tangential_force"))
     tangential = _scalar(ds, "mu", hold, 0.0) * load > 0.0
-    xs = [peak["x"]] if tangential or peak["x"] == 0.0 else [-peak["x"], peak["x"]]
-    length, unit = _unit(ds["x"]), _unit(da)
-    where = f"x = {'+-' if len(xs) > 1 else ''}{peak['x']:.4g} {length}, z = {peak['depth']:.4g} {length}"
+    xs = [peak["x"]] if tangential or peak["x"] == 0.0 or across == "rho" else [-peak["x"], peak["x"]]
+    length = _unit(ds[across]) if across == "x" else "a"
+    unit = _unit(da)
+    where = (f"{across} = {'+-' if len(xs) > 1 else ''}{peak['x']:.4g}{'' if across == 'rho' else ' ' + length}, "
+             f"z = {peak['depth']:.4g} {length if across == 'x' else 'a'}")
     if np.isinf(peak["value"]):
         text = f"{da.name} unbounded at {where}"
     else:

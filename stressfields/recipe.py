@@ -923,9 +923,10 @@ def _plot(scen: Scenario, plot: dict, swept: tuple[str, ...], variables: tuple[s
     plane = map_plane(swept)
     if kind == "map" and plane is None:
         problems.append(f"plot.kind = 'map' needs x and y swept (or x and z); swept: {', '.join(swept)}")
-    x = plot.get("x", "x" if kind == "map" else swept[-1])
-    if kind == "map" and x != "x":
-        problems.append(f"plot.x = {show(x)}: a map is drawn over x and {plane[1] if plane else 'y'}; "
+    across = plane[0] if plane else "x"
+    x = plot.get("x", across if kind == "map" else swept[-1])
+    if kind == "map" and x != across:
+        problems.append(f"plot.x = {show(x)}: a map is drawn over {across} and {plane[1] if plane else 'y'}; "
                         "leave plot.x out")
     elif not isinstance(x, str) or (x not in swept and not dims.get(x)):
         problems.append(f"plot.x = {show(x)} must name a swept parameter ({', '.join(swept)}) or a variable "
@@ -964,9 +965,14 @@ def _plot(scen: Scenario, plot: dict, swept: tuple[str, ...], variables: tuple[s
     return problems
 
 
+#: the sections below the surface: x-z (a plane through the axis, signed x), rho-z (the radius r/a
+#: of an axisymmetric field, the graded scenarios)
+SECTIONS = (("x", "z"), ("rho", "z"))
+
+
 def map_plane(swept) -> tuple[str, str] | None:
-    """The plane of a map: x-y where both are swept, else the section x-z below the surface."""
-    for plane in (("x", "y"), ("x", "z")):
+    """The plane of a map: x-y where both are swept, else a section (x-z, rho-z) below the surface."""
+    for plane in (("x", "y"),) + SECTIONS:
         if set(plane) <= set(swept):
             return plane
     return None
@@ -978,7 +984,7 @@ def plot_kind(spec: dict, swept) -> str:
     if "kind" in spec:
         return spec["kind"]
     plane = map_plane(swept)
-    if plane == ("x", "y") or (plane == ("x", "z") and not {"x", "hue"} & set(spec)):
+    if plane == ("x", "y") or (plane in SECTIONS and not {"x", "hue"} & set(spec)):
         return "map"
     return "line"
 

@@ -43,11 +43,11 @@ def cf_failures(path: Path) -> list:
 
 def dimension_order_only(path: Path, failures: list) -> bool:
     """Whether ``failures`` are only CF §2.4's recommended dimension order, on a file that sweeps the
-    depth z together with x or y: compliance-checker sees z as vertical (``positive``) but cannot see
-    that x and y are horizontal without ``axis = "X"/"Y"``, which ParaView reads as longitude and
-    latitude (cf.py); the order stored is z, y, x, the one recommended."""
+    depth z together with x, y or the radius rho: compliance-checker sees z as vertical (``positive``)
+    but cannot see that x, y and rho are horizontal without ``axis = "X"/"Y"``, which ParaView reads as
+    longitude and latitude (cf.py); the order stored is z, y, x (z, rho), the one recommended."""
     with xr.open_dataset(path) as ds:
-        sweeps_depth = "z" in ds.dims and bool({"x", "y"} & set(ds.dims))
+        sweeps_depth = "z" in ds.dims and bool({"x", "y", "rho"} & set(ds.dims))
     return sweeps_depth and [name for _, name, _ in failures] == ["§2.4 Dimensions"]
 
 

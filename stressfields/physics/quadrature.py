@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import roots_jacobi, roots_legendre
 
-__all__ = ["Orders", "orders", "gauss_legendre", "gauss_jacobi", "panel_count", "panel_rule",
+__all__ = ["Orders", "orders", "table_row", "gauss_legendre", "gauss_jacobi", "panel_count", "panel_rule",
            "interval_rule", "segment_rule", "group_by"]
 
 
@@ -101,6 +101,17 @@ def orders(rtol: float) -> Orders:
         if rtol >= tol:
             return o
     return _TABLE[-1][1]  # pragma: no cover - guarded above
+
+
+def table_row(table, rtol: float, what: str = "the quadrature"):
+    """The row of ``table`` ((tolerance, orders) pairs, tolerances falling) for ``rtol``: the first whose
+    measured tolerance is at most rtol; ValueError for a non-positive rtol or one below the last row."""
+    rtol = float(rtol)
+    if not (math.isfinite(rtol) and rtol > 0.0):
+        raise ValueError(f"rtol = {rtol!r} must be a positive finite number")
+    if rtol < table[-1][0]:
+        raise ValueError(f"rtol = {rtol!r} is below the reachable {table[-1][0]:g} of {what}")
+    return next(o for tol, o in table if rtol >= tol)
 
 
 def panel_count(lo: np.ndarray, hi: np.ndarray, h: float) -> np.ndarray:

@@ -66,6 +66,136 @@ R_REL = Parameter("rho", "radial coordinate rho = r/a: the radius r divided by t
 RENAMED = {"a": "contact_radius", "r": "rho"}
 GEOMETRY = (PROFILE, R, TAN, N, A, PROFILE_R, PROFILE_F)
 MATERIAL = (E0, C0, NU, K)
+#: below the surface (docs/theory/graded.md section 10): solved for k = 0 (any nu) and for k > 0 with
+#: nu = 1/(2+k), which `poisson = "holl_ratio"` sets
+Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface); given, the "
+              "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k) (the "
+              "paraboloid at k > 0)", low=0.0, high=1e6, label="depth z / a", axis="Z")
+# no default: a recipe without it is recorded (and hashed) as before the choice existed
+POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu; also when omitted) or 'holl_ratio' "
+                      "(nu = 1/(2+k), following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
+                      choices=("given", "holl_ratio"), sweepable=False, label="Poisson's ratio rule")
+NU_N = Parameter(NU.name, NU.meaning, default=NU.default, low=NU.low, low_open=True, high=NU.high,
+                 when={"poisson": (None, "given")}, label=NU.label)
+MATERIAL_N = (E0, C0, POISSON_N, NU_N, K)
+STRESS_NAMES = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz", "von_mises", "sigma_1", "sigma_2", "sigma_3",
+                "tau_max")
+_AT = "at (r, z) on a plane through the axis, r = rho a, depth z a (z = 0: the surface)"
+#: the short labels (files' long_name) of the stress variables below the surface
+STRESS_LABELS = {"sigma_1": "sigma_1 (largest)", "sigma_2": "sigma_2 (middle)", "sigma_3": "sigma_3 (smallest)",
+                 "tau_max": "shear stress tau_max", "von_mises": "von Mises stress",
+                 **{f"sigma_{c}": f"stress sigma_{c}" for c in ("rr", "tt", "zz", "rz", "xx", "yy", "xz")}}
+
+
+def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, ...]:
+    """The stress below the surface and its invariants, and their validity flag (``dims`` ends in z, rho)."""
+    what = [("sigma_rr", "radial stress sigma_rr"), ("sigma_tt", "hoop stress sigma_theta_theta"),
+            ("sigma_zz", "normal stress sigma_zz"), ("sigma_rz", "shear stress sigma_rz"),
+            ("von_mises", "von Mises equivalent stress sqrt(3 J2)"), ("sigma_1", "largest principal stress"),
+            ("sigma_2", "intermediate principal stress"), ("sigma_3", "smallest principal stress"),
+            ("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2")]
+    edge = ("the adhesive edge r = a at z = 0 (+inf: the tensile edge singularity; sigma_rz NaN, its sign "
+            "depends on the direction of approach), " if adhesive else "")
+    return tuple(Variable(n, f"{m} {_AT}", units="Pa", dims=dims, label=STRESS_LABELS[n],
+                          comment="tension positive, z into the body; docs/theory/graded.md section 10")
+                 for n, m in what) + (
+        Variable("stress_validity", "validity of the stress variables at the point", dims=dims, dtype="int8",
+                 flag_values=(0, 1, 2, 3), always=True,
+                 flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                                "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
+                 comment=f"1: a value is +-inf where the exact field is unbounded ({edge}the conical tip r = 0 at "
+                         "z = 0 and k = 0, where the pressure is unbounded); 2: a value is NaN where the limit "
+                         "depends on the direction of approach; 3: a NaN below the surface, at a point the "
+                         "quadrature does not resolve. Only the stress variables in this file are considered.",
+                 label="validity of the stresses"),
+    )
+
+
+_SEARCH = ("Found by the search of physics.axisymmetric.peaks on the graded field (physics.graded.interior.peaks): "
+           "the surface singular points r = 0 and r = a first, a grid over rho in [0, 2] and depths 0 and 1e-3 a to "
+           "3a, a bounded Nelder-Mead refinement to 1e-9 a; the value is the field at the refined point, the "
+           "position accurate to about 1e-7 a. Where the field is unbounded at a surface singular point (the "
+           "adhesive edge, the conical tip at k = 0) the peak is +inf there, depth 0, and peak_validity is 1.")
+
+
+def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
+    """The per-case peaks of tau_max and von Mises in the half-space and where they sit."""
+    out = []
+    for name, what in (("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"),
+                       ("von_mises", "von Mises equivalent stress sqrt(3 J2)")):
+        out += [Variable(f"{name}_peak", f"largest {what} in the half-space z >= 0", units="Pa", dims=case,
+                         comment=_SEARCH, label=f"peak {name}"),
+                Variable(f"{name}_peak_rho", f"radius r/a of the largest {what}", dims=case, comment=_SEARCH,
+                         label=f"r/a of peak {name}"),
+                Variable(f"{name}_peak_depth", f"depth z/a of the largest {what}", dims=case, comment=_SEARCH,
+                         label=f"z/a of peak {name}")]
+    out.append(Variable(
+        "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
+        flag_values=(0, 1, 2, 4), flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                                                 "undefined_direction_dependent_limit", "search_not_converged"),
+        comment="0: the peaks are within the stated accuracy; 1: unbounded at a surface singular point (+inf "
+                "there, depth 0); 2: NaN at a surface singular point; 4: the refinement did not converge or "
+                "ended on the border of the search box (rho = 2 or z = 3a): the best found, not the peaks. "
+                "Written whenever a peak variable is.", always=tuple(v.name for v in out),
+        label="validity of the peaks"))
+    return tuple(out)
+
+
+def _peaks(names, p, options, **extra) -> dict:
+    from ..physics.graded.interior import PEAKS, peaks
+
+    if not any(n in PEAKS for n in names):
+        return {}
+    found = peaks(_indenter(p), a=_f(p, "contact_radius"), k=_f(p, "k"), nu=_nu(p), E0=_f(p, "E0"),
+                  c0=_f(p, "c0"), method=options["method"], rtol=options["rtol"], **extra)
+    return {n: found[n] for n in names if n in PEAKS}
+
+
+def _depth_problems(values) -> list[str]:
+    """With `z` given: the (k, nu) and the profile must be solved below the surface (one line)."""
+    if values.get("z") is None:
+        return []
+    from ..physics.graded import holl_ratio
+    from ..physics.graded.interior import check_supported
+
+    g = _grid(values, ("k", "nu"))
+    nu = holl_ratio(g["k"]) if values.get("poisson") == "holl_ratio" else g["nu"]
+    try:
+        check_supported(g["k"], nu, values.get("profile", PROFILE.default))
+    except ValueError as exc:
+        return [f"z is given, but {exc}"]
+    return []
+
+
+def _nu(p):
+    """nu as the physics takes it: the parameter, or Holl's ratio 1/(2+k) with poisson = 'holl_ratio'."""
+    if p.get("poisson") == "holl_ratio":
+        k = _f(p, "k")
+        return None if k is None else 1.0 / (2.0 + k)
+    return _f(p, "nu")
+
+
+def _stress(names, p, options, **extra) -> dict:
+    """The requested stress variables below the surface and their validity flag."""
+    from ..physics.flags import validity_flag
+    from ..physics.graded.interior import INTERIOR, UNRESOLVED, interior_fields
+
+    wanted = [n for n in names if n in INTERIOR]
+    flag = "stress_validity" in names
+    if not wanted and not flag:
+        return {}
+    asked = wanted or list(INTERIOR)
+    z = _f(p, "z")
+    z = np.zeros(()) if z is None else z
+    out = interior_fields(asked, _indenter(p), a=_f(p, "contact_radius"), rho=_f(p, "rho"), z=z, k=_f(p, "k"),
+                          nu=_nu(p), E0=_f(p, "E0"), c0=_f(p, "c0"), method=options["method"], rtol=options["rtol"],
+                          **extra)
+    if flag:
+        deep = np.broadcast_to(z > 0.0, np.shape(out[asked[0]]))
+        code = validity_flag(*(out[n] for n in asked))
+        unresolved = deep & np.any([np.isnan(out[n]) for n in asked], axis=0)
+        out["stress_validity"] = np.where(unresolved, np.int8(UNRESOLVED), code).astype(np.int8)
+    return {n: v for n, v in out.items() if n in names}
 GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dimensions
 
 #: the methods of the route table (physics.graded.routes.METHODS, one definition in physics.names)
@@ -192,28 +322,34 @@ N_VARS = (
              dims=("k", "contact_radius") + GEOM + ("rho",), label="displacement u_z(r; a)"),
     _validity(N_DIMS + ("rho",), N_FLAGGED, "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
               "cone at k = 0), where the exact pressure is unbounded"),
-)
+) + stress_variables(N_DIMS + ("z", "rho"), adhesive=False) + peak_variables(N_DIMS)
 
 
 def _evaluate_normal(names, p, options):
     from ..physics import graded as gp
 
-    values = dict(**_where(p), k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"))
+    values = dict(**_where(p), k=_f(p, "k"), nu=_nu(p), E0=_f(p, "E0"), c0=_f(p, "c0"))
     out = _fields(gp.normal_fields, gp.fields.NORMAL, names, p, options, **values)
+    out.update(_stress(names, p, options))
+    out.update(_peaks(names, p, options))
     if "validity" in names:
         out["validity"] = _flag(gp.normal_fields, gp.fields.NORMAL, N_FLAGGED, out, p, options, **values)
     return out
 
 
 def _check_normal(values, physical, method):
-    return _check_profile(values, method)
+    return _check_profile(values, method) + _depth_problems(values)
 
 
 def route(values, method, rtol):
     """Closed forms of the paper for power-law profiles; the MDR quadrature for tabulated ones."""
     from ..physics import graded as gp
 
-    return gp.resolve(values.get("profile", PROFILE.default), method, rtol)
+    surface = gp.resolve(values.get("profile", PROFILE.default), method, rtol)
+    if values.get("z") is None:
+        return surface
+    below = gp.routes.resolve_interior(values.get("k", K.default), rtol)
+    return f"{surface[0]}; below the surface: {below[0]}", f"{surface[1]}; below the surface: {below[1]}"
 
 
 CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
@@ -223,7 +359,7 @@ GRADED_NORMAL = Scenario(
     name="graded_normal",
     summary="Rigid axisymmetric indenter on a power-law graded half-space E = E0 (z/c0)^k: depth, force, "
             "pressure and surface displacement (MDR)",
-    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (A_RAD, R_REL), variables=N_VARS,
+    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL_N + (A_RAD, Z, R_REL), variables=N_VARS,
     evaluate=_evaluate_normal, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     renamed=RENAMED,
     default_variables=("depth", "normal_force", "pressure", "uz"),
@@ -257,7 +393,7 @@ AD_VARS = (
              flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
              comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
                      "tabulated profile; the critical values are NaN there", label="validity at pull-off"),
-)
+) + stress_variables(AD_DIMS + ("z", "rho"), adhesive=True) + peak_variables(AD_DIMS)
 
 
 def _evaluate_adhesive(names, p, options):
@@ -266,9 +402,11 @@ def _evaluate_adhesive(names, p, options):
     wanted = list(names)
     if "critical_validity" in names and "critical_radius" not in names:
         wanted.append("critical_radius")        # the flag is read off a_c
-    values = dict(**_where(p), k=_f(p, "k"), nu=_f(p, "nu"), E0=_f(p, "E0"), c0=_f(p, "c0"),
+    values = dict(**_where(p), k=_f(p, "k"), nu=_nu(p), E0=_f(p, "E0"), c0=_f(p, "c0"),
                   delta_gamma=_f(p, "delta_gamma"), mode=p.get("control"))
     out = _fields(gp.adhesive_fields, gp.fields.ADHESIVE, wanted, p, options, **values)
+    out.update(_stress(names, p, options, delta_gamma=_f(p, "delta_gamma")))
+    out.update(_peaks(names, p, options, delta_gamma=_f(p, "delta_gamma")))
     if "critical_validity" in names:
         out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
     if "validity" in names:
@@ -280,7 +418,7 @@ GRADED_ADHESIVE = Scenario(
     name="graded_adhesive",
     summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
             "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
-    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL + (DGAM, CONTROL, A_RAD, R_REL),
+    references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL_N + (DGAM, CONTROL, A_RAD, Z, R_REL),
     variables=AD_VARS,
     evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     renamed=RENAMED,
@@ -313,6 +451,11 @@ DELTA_X = Parameter("delta_x", "imposed tangential displacement delta_x (displac
                     low=0.0, high=1e3, label="tangential shift delta_x")
 PAIR = ("E0", "k", "nu", "E0_2", "nu_2")
 T_FIELD = PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx", "rho")
+T_DEEP = PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx", "z", "x")
+X_T = Parameter("x", "coordinate x/a on the plane y = 0 through the axis along the tangential load (signed): "
+                "where the stress variables are computed (with z)", low=-1e6, high=1e6, label="x / a", axis="X")
+Z_T = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface) of the stress "
+                "variables; solved at k = 0", low=0.0, high=1e6, label="depth z / a", axis="Z")
 T_VARS = (
     Variable("stick_radius", "radius c of the stick zone divided by the contact radius a (eq. 51)",
              dims=("k", "contact_radius") + GEOM + ("fx",), label="stick radius c / a"),
@@ -337,6 +480,24 @@ T_VARS = (
     _validity(T_FIELD, ("shear_traction",), "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
               "with n + k <= 1; under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) "
               "and flagged 0"),
+) + tuple(
+    Variable(n, f"{m} at (x, 0, z) on the plane y = 0 along the tangential load, x = x a, depth z a (z = 0: the "
+             "surface), in the lower body", units="Pa", dims=T_DEEP, label=STRESS_LABELS[n],
+             comment="tension positive, z into the body; k = 0 only; docs/theory/graded.md (G69)")
+    for n, m in (("sigma_xx", "normal stress sigma_xx"), ("sigma_yy", "normal stress sigma_yy"),
+                 ("sigma_zz", "normal stress sigma_zz"), ("sigma_xz", "shear stress sigma_xz"),
+                 ("von_mises", "von Mises equivalent stress sqrt(3 J2)"), ("sigma_1", "largest principal stress"),
+                 ("sigma_2", "intermediate principal stress"), ("sigma_3", "smallest principal stress"),
+                 ("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"))
+) + (
+    Variable("stress_validity", "validity of the stress variables at the point", dims=T_DEEP, dtype="int8",
+             flag_values=(0, 1, 2, 3), always=True,
+             flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
+                            "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
+             comment="the codes of the axisymmetric family's validity: 1 +-inf where the exact field is unbounded "
+                     "(the conical tip r = 0 at z = 0), 2 NaN where the limit depends on the direction (the tip "
+                     "in gross slip), 3 NaN below the surface at a point the 1-D routes do not resolve",
+             label="validity of the stresses"),
 )
 
 
@@ -361,6 +522,7 @@ def _evaluate_tangential(names, p, options):
     values = dict(**_where(p), fx=_f(p, "fx"), delta_x=_f(p, "delta_x"), mu=_f(p, "mu"), c0=_f(p, "c0"), k=k,
                   nu=nu, E0=e0, E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
     out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, **values)
+    out.update(_tangential_stress(names, p, options, values))
     if "coupling" in names:
         ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
         out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
@@ -370,8 +532,33 @@ def _evaluate_tangential(names, p, options):
     return out
 
 
+def _tangential_stress(names, p, options, values) -> dict:
+    """The requested stress variables of the lower body (k = 0) and their validity flag."""
+    from ..physics.graded.interior import TANGENTIAL_INTERIOR, tangential_interior_fields
+
+    wanted = [n for n in names if n in TANGENTIAL_INTERIOR and n != "validity"]   # (that name is the surface's flag)
+    if "stress_validity" in names:
+        wanted.append("validity")
+    if not wanted:
+        return {}
+    x, z = _f(p, "x"), _f(p, "z")
+    got = tangential_interior_fields(
+        wanted, _indenter(p), a=values["a"], x=np.zeros(()) if x is None else x, z=np.zeros(()) if z is None else z,
+        fx=values["fx"], mu=values["mu"], k=values["k"], nu=values["nu"], E0=values["E0"], c0=values["c0"],
+        E0_2=values["E0_2"], nu_2=values["nu_2"], method=options["method"], rtol=options["rtol"])
+    if "validity" in got:
+        got["stress_validity"] = got.pop("validity")
+    return got
+
+
 def _check_tangential(values, physical, method):
     problems = _check_profile(values, method)
+    if (values.get("z") is not None or values.get("x") is not None) and np.any(np.asarray(values.get("k")) > 0.0):
+        problems.append(f"z or x is given with k = {float(np.max(values['k']))!r}: below the surface under tangential "
+                        "load the graded family solves k = 0")
+    elif (values.get("z") is not None or values.get("x") is not None) and values.get("profile") == "tabulated":
+        problems.append("z or x is given with profile = 'tabulated': below the surface under tangential load the "
+                        "graded family solves the parabolic, conical and power-law profiles at k = 0")
     if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
         return problems
     from ..physics import graded as gp
@@ -402,7 +589,8 @@ GRADED_TANGENTIAL = Scenario(
     summary="Cattaneo-Mindlin partial slip between power-law graded bodies: stick radius, tangential "
             "displacement and force, shear traction (MDR)",
     references=REFERENCE, theory="graded",
-    parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL),
+    parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL,
+                           Z_T, X_T),
     variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
     conventions=CONVENTIONS, route=route, renamed=RENAMED,
     default_variables=("stick_radius", "tangential_displacement", "max_tangential_displacement", "normal_force",

@@ -74,7 +74,7 @@ PARAMETERS = (
     Parameter("mu", "coefficient of friction of the partial-slip tangential load (with fx or tangential_force)",
               low=0.0, high=10.0, label="friction coefficient"),
     Parameter("fx", "tangential load Q divided by mu P (P the normal load per period, or per unit length of the single "
-              "indenter), in [0, 1]; 1: the onset of gross slip", low=0.0, high=1.0, label="tangential load Q / (mu P)"),
+              "indenter), in [0, 1]; 1: the onset of gross slip", low=0.0, high=1.0, label="Q / (mu P)"),
     Parameter("tangential_force", "tangential load Q per period (single indenter: per unit length) along +x, at most "
               "mu times the normal load (instead of fx; physical mode)", units="N/m", low=0.0, high=1e15,
               when={"fx": (None,)}, label="tangential load Q"),

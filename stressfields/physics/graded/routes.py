@@ -6,6 +6,8 @@ strings are written into every output file (``stressfields_method``, ``stressfie
 """
 from __future__ import annotations
 
+import numpy as np
+
 from ..names import GRADED_METHODS as METHODS  # one definition, read by the scenario declarations
 
 KINDS = ("parabolic", "conical", "power_law", "tabulated")
@@ -40,3 +42,26 @@ def resolve(profile_kind: str, method: str, rtol: float) -> tuple[str, str]:
     if method == "quadrature" or profile_kind == "tabulated":
         return QUADRATURE, _quadrature_accuracy(rtol)
     return CLOSED, _CLOSED_ACCURACY
+
+
+#: below the surface (docs/theory/graded.md (G67)): k = 0 takes the axisymmetric family's interior
+#: routes, k > 0 with nu = 1/(2+k) the 2-D quadrature of the radial point-load field
+INTERIOR_HOMOGENEOUS = ("k = 0: the homogeneous interior (closed forms: paraboloid, cone; else the 1-D "
+                        "superposition of flat punches)")
+INTERIOR_HOLL = ("k > 0, nu = 1/(2+k): 2-D quadrature of the radial point-load field over the contact (Gauss "
+                 "rules, orders from rtol)")
+
+
+def resolve_interior(k, rtol: float) -> tuple[str, str]:
+    """(route, accuracy) of the stress below the surface for the grading exponents ``k`` of a recipe."""
+    k = [float(v) for v in np.ravel(k)]
+    routes, acc = [], []
+    if any(v == 0.0 for v in k):
+        routes.append(INTERIOR_HOMOGENEOUS)
+        acc.append("k = 0: " + _CLOSED_ACCURACY + " (closed forms) or |error| <= rtol * max(|value|, p_m) "
+                   "(superposition)")
+    if any(v > 0.0 for v in k):
+        routes.append(INTERIOR_HOLL)
+        acc.append(f"k > 0: |error| <= rtol * max(|value|, P), rtol = {rtol:g}, P the pressure scale of the contact; "
+                   "on z = 0 the closed-form limit")
+    return "; ".join(routes), "; ".join(acc)

@@ -1,0 +1,35 @@
+"""Points per CPU second of the graded 2-D route below the surface (physics.graded.holl.disc_stress):
+a rho-z map (41 x 25 points, r/a in [0, 2], z/a in [0.02, 2]) and shallow points (z/a from 1e-6 to 1),
+k = 0.5, the paraboloid's pressure exponent (1 + k)/2, medians of 5 runs per rtol.  Part of the benchmark
+tools, not of the package:  python benchmarks/graded_interior_rate.py  (from a clone)."""
+from __future__ import annotations
+
+import statistics
+import time
+
+import numpy as np
+
+from stressfields.physics.graded import holl
+
+
+def rate(r, z, rtol, repeats=5) -> float:
+    holl.disc_stress(r[:8], z[:8], 0.5, 0.75, rtol)          # the rules' caches
+    times = []
+    for _ in range(repeats):
+        start = time.process_time()
+        holl.disc_stress(r, z, 0.5, 0.75, rtol)
+        times.append(time.process_time() - start)
+    return r.size / statistics.median(times)
+
+
+def main() -> None:
+    R, Z = np.meshgrid(np.linspace(0.0, 2.0, 41), np.linspace(0.02, 2.0, 25))
+    rng = np.random.default_rng(1)
+    r_s, z_s = 2.0 * rng.random(1000), 10.0 ** rng.uniform(-6.0, 0.0, 1000)
+    print("rtol      map points/CPU s   shallow points/CPU s")
+    for rtol in (1e-4, 1e-6, 1e-8, 1e-10, 1e-12):
+        print(f"{rtol:<8g}  {rate(R.ravel(), Z.ravel(), rtol):>16,.0f}   {rate(r_s, z_s, rtol):>20,.0f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,93 @@
+"""The graded scenarios below the surface, end to end: the depth z, the stress variables and their flag,
+the peaks, the refusals (docs/theory/graded.md section 10).  Held against the axisymmetric family's
+`parabolic` scenario (another scenario, another entry point) and Johnson's axis formulas for the peak."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+import stressfields as sf
+from stressfields import cli
+
+ROOT = Path(__file__).resolve().parents[1]
+E0, A_RAD, R = 2.0e9, 1e-3, 0.02
+BASE = {"E0": E0, "contact_radius": A_RAD, "R": R, "c0": 1e-3}
+STRESS = ["sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz", "tau_max"]
+
+
+def run(params, variables, scenario="graded_normal"):
+    return sf.generate({"scenario": scenario, "parameters": {**BASE, **params},
+                        "output": {"variables": variables}}).compute()
+
+
+def test_surface_stress_is_minus_the_pressure_bit_for_bit():
+    for scenario, extra in (("graded_normal", {}), ("graded_adhesive", {"delta_gamma": 0.4})):
+        ds = run({"k": [0.0, 0.5], "poisson": "holl_ratio", "rho": np.linspace(0, 1.5, 7).tolist(), "z": 0.0,
+                  **extra},
+                 ["pressure", "sigma_zz"], scenario)
+        assert np.array_equal(ds.sigma_zz.values, -ds.pressure.transpose(*ds.sigma_zz.dims).values)
+
+
+def test_k0_equals_the_axisymmetric_parabolic_scenario():
+    nu = 0.3
+    rho, z = [0.0, 0.4, 1.0, 1.6], [0.05, 0.5, 1.2]
+    g = run({"k": 0.0, "nu": nu, "rho": rho, "z": z}, STRESS)
+    ax = sf.generate({"scenario": "parabolic", "parameters": {
+        "nu": nu, "E": E0, "R": R, "delta": A_RAD ** 2 / R, "y": 0.0, "x": [v * A_RAD for v in rho],
+        "z": [v * A_RAD for v in z]}, "output": {"variables": ["sigma_xx", "sigma_yy", "sigma_zz", "sigma_xz",
+                                                               "tau_max"]}}).compute()
+    for mine, theirs in zip(STRESS, ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xz", "tau_max")):
+        want = ax[theirs].transpose("z", "x").values
+        np.testing.assert_allclose(g[mine].transpose("z", "rho").values, want, rtol=1e-12,
+                                   atol=1e-12 * np.max(np.abs(want)))
+
+
+def _johnson_axis_tau(z, nu):
+    """tau_max / p0 on the Hertz axis (Johnson 1985, sec. 3.4)."""
+    sz = -1.0 / (1.0 + z * z)
+    sr = -(1.0 + nu) * (1.0 - z * math.atan(1.0 / z)) + 0.5 / (1.0 + z * z)
+    return 0.5 * (sr - sz)
+
+
+def test_peak_of_the_homogeneous_case_is_johnsons():
+    ds = run({"k": 0.0, "poisson": "holl_ratio"}, ["tau_max_peak", "tau_max_peak_rho", "tau_max_peak_depth"])
+    best = minimize_scalar(lambda z: -_johnson_axis_tau(z, 0.5), bounds=(0.2, 1.0), method="bounded",
+                           options={"xatol": 1e-10})
+    p0 = 2 * A_RAD * E0 / (1 - 0.25) / (math.pi * R)
+    assert float(ds.tau_max_peak) == pytest.approx(-best.fun * p0, rel=1e-9)
+    assert float(ds.tau_max_peak_depth) == pytest.approx(best.x, abs=1e-6)
+    assert float(ds.tau_max_peak_rho) == 0.0 and int(ds.peak_validity) == 0
+
+
+def test_adhesive_edge_is_flagged_unbounded_and_the_interior_finite():
+    ds = run({"k": 0.5, "poisson": "holl_ratio", "delta_gamma": 0.4, "rho": [0.5, 1.0], "z": [0.0, 0.01]},
+             ["sigma_zz", "tau_max", "stress_validity"], "graded_adhesive")
+    edge = ds.sel(rho=1.0, z=0.0)
+    assert np.isposinf(edge.sigma_zz) and np.isposinf(edge.tau_max) and int(edge.stress_validity) == 1
+    rest = ds.where(~((ds.rho == 1.0) & (ds.z == 0.0)))
+    assert int(rest.stress_validity.max()) == 0 and np.isfinite(ds.sigma_zz.sel(z=0.01)).all()
+
+
+@pytest.mark.parametrize("extra,expect", [
+    ({"k": 0.5, "nu": 0.3, "z": 0.5}, "z is given, but nu = 0.3 with k = 0.5 is not solved below the surface"),
+    ({"k": 0.5, "poisson": "holl_ratio", "z": 0.5, "profile": "conical", "tan_theta": 0.1},
+     "z is given, but profile = 'conical' with k = 0.5 is not solved below the surface"),
+    ({"k": 0.0, "z": -0.5}, "z = -0.5 must be a number in [0, 1000000]"),
+    ({"scenario": "graded_tangential", "k": 0.5, "poisson": "holl_ratio", "z": 0.2, "x": 0.5},
+     "z or x is given with k = 0.5: below the surface under tangential load the graded family solves k = 0"),
+])
+def test_unsupported_cases_and_negative_depth_exit_2_in_one_line(tmp_path, capsys, extra, expect):
+    params = {**BASE, **extra}
+    scenario = params.pop("scenario", "graded_normal")
+    if "profile" in extra:
+        params.pop("R")
+    lines = [f"scenario = \"{scenario}\"", "[parameters]"] + [
+        f"{k} = {v!r}".replace("'", "\"") for k, v in params.items()] + ["[output]", "variables = [\"sigma_zz\"]"]
+    recipe = tmp_path / "r.toml"
+    recipe.write_text("\n".join(lines) + "\n")
+    assert cli.main(["run", str(recipe), "-o", str(tmp_path / "x.nc"), "-q"]) == 2
+    err = capsys.readouterr().err
+    assert expect in err and "Traceback" not in err and len(err.strip().splitlines()) == 2
+    assert not (tmp_path / "x.nc").exists()
