@@ -71,10 +71,11 @@ class PeriodicPotential:
             # B_j w^{-j-1} by j + 1 products ((j + 2) u of its size |B_j| e^{(j+1)Z}), times X (|X| <= 2,
             # a few u) and, for z G', by its weight j + 1 and by z/|1 - w e^{-+ia}| <= 1 + Z (W39); the poles
             # likewise; the coefficients' own errors errB carried by the largest power
-            grow = (j + 2.0) * (j + 3.0) * np.exp((j + 1.0) * Z[:, None])
-            return 2.0 * _U * (1.0 + Z) * (series.row_dot(absB * grow, np.ones(Kmax))
-                                            + series.row_dot(np.abs(pole) * grow, np.ones(Kmax))) \
-                + 2.0 * series.row_sum(errB) * (1.0 + Z) * np.exp(K * Z)
+            with np.errstate(over="ignore"):      # +inf at great depth: the closed form is not taken there
+                grow = (j + 2.0) * (j + 3.0) * np.exp((j + 1.0) * Z[:, None])
+                return 2.0 * _U * (1.0 + Z) * (series.row_dot(absB * grow, np.ones(Kmax))
+                                                + series.row_dot(np.abs(pole) * grow, np.ones(Kmax))) \
+                    + 2.0 * series.row_sum(errB) * (1.0 + Z) * np.exp(K * Z)
 
         # the principal part needs x_k up to K; the Taylor coefficients up to M + K + 1
         h = _sqrt1m_coefficients(2 * Kmax + 2)
