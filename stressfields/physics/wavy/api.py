@@ -685,3 +685,36 @@ def subsurface_peaks(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
                 arr[flat] = val
             border[flat] |= (abs(x0) >= xmax) or (z0 >= PEAK_DEPTH)
     return {**out, "on_border": border}
+
+
+def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                            n_harmonics=None, nu=0.3, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS):
+    """u_x/Delta_1 and u_z/Delta_1 of the normal load at (x/a, z/a), z >= 0 (u_z positive into the body, u_x
+    along +x), single indenter, docs/theory/wavy.md (W45); returns (u_x, u_z, info).
+
+    Datum: that of the surface ``displacement`` (the log kernel ln|x - xi| in the lambda_1 = 2 pi unit), which
+    u_z reproduces at z = 0; u_x is odd in x (u_x(0, z) = 0), at z = 0 Johnson's
+    u_x = (1 - 2 nu)/(4 mu) [int_x^a p - int_-a^x p].  info "error_estimate": a bound per point (Delta_1 units).
+    The periodic surface is not produced: its primitive has no closed form here (see (W45))."""
+    if periodic:
+        raise ValueError("the displacements below the surface are produced for the single indenter "
+                         "(periodic = False) only")
+    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, False, n_harmonics, rtol, max_terms)
+    t = np.asarray(x_over_a, dtype=float)
+    zt = np.asarray(z_over_a, dtype=float)
+    if np.any(~(zt >= 0.0)) or not np.all(np.isfinite(zt)):
+        raise ValueError("z_over_a must be finite and >= 0 (depth into the body)")
+    nu = np.asarray(nu, dtype=float)
+    shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape)
+    t, zt, nu = (np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu))
+    row = np.broadcast_to(c.row, shape).reshape(-1)
+    a = np.broadcast_to(c.a_in, shape).reshape(-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        G, _, eG, _ = _interior.nonperiodic_potential(c.table, row, t, zt)
+    Psi, ePsi = _interior.nonperiodic_primitive(c.table, row, t, zt, a)
+    zk = a * zt
+    ux, uz = _interior.normal_displacements(Psi, G, zk, nu)
+    err = ePsi + 0.5 / (1.0 - nu) * zk * eG
+    info = {"error_estimate": err, "converged": c.table.converged[row]}
+    shaped = lambda v: np.asarray(v).reshape(shape)
+    return shaped(ux), shaped(uz), {k: shaped(v) for k, v in info.items()}
