@@ -66,8 +66,8 @@ def test_against_flamant_quadrature(w, profile):
     mp.mp.dps = 20
     D, a = coefficients(w, profile)
     rng = np.random.default_rng(7)
-    t = np.concatenate([[0.0, 0.5, -0.97, 1.3, -2.0], rng.uniform(-3.0, 3.0, 8)])
-    zt = np.concatenate([[1e-9, 0.2, 1.0, 0.05, 3.0], 10.0 ** rng.uniform(-6.0, math.log10(10 * math.pi / a), 8)])
+    t = np.concatenate([[0.0, 0.5, -0.97, 1.3, -2.0], rng.uniform(-3.0, 3.0, 7)])
+    zt = np.concatenate([[1e-9, 0.2, 1.0, 0.05, 3.0], 10.0 ** rng.uniform(-6.0, math.log10(10 * math.pi / a), 7)])
     ux, uz, err = disp(t, zt, w, profile)
     for i in range(t.size):
         rx, rz = flamant(a * t[i], a * zt[i], D, a, NU)
@@ -156,3 +156,74 @@ def test_hertz_limit():
 def test_periodic_is_refused():
     with pytest.raises(ValueError, match="single indenter"):
         api.subsurface_displacement(0.0, 1.0, 0.3, *F2, periodic=True)
+
+
+
+def flamant_tangential(x, z, a, c, Da, Dc, mu, nu):
+    """u_x/Delta_1, u_z/Delta_1 by quadrature of the tangential line-load displacements (plane strain, kernel
+    units, log datum ln rho) over the traction q = mu [p(s; a) - p(s; c)]: per unit load along +x
+    2 mu u_x = (-2 (1 - nu) ln rho - z^2/rho^2)/pi, 2 mu u_z = (-(1 - 2 nu)(phi - pi/2) + (x - s) z/rho^2)/pi."""
+    x, z, nu, mu = mp.mpf(x), mp.mpf(z), mp.mpf(nu), mp.mpf(mu)
+
+    def p(s, w, D):
+        if abs(s) >= w:
+            return mp.mpf(0)
+        th = mp.acos(s / w)
+        return sum(d * mp.sin((2 * m + 1) * th) for m, d in enumerate(D))
+
+    def q(s):
+        return mu * (p(s, a, Da) - p(s, c, Dc))
+
+    def kx(s):
+        rho2 = (x - s) ** 2 + z ** 2
+        return q(s) * (-(1 - nu) * mp.log(rho2) - z ** 2 / rho2)
+
+    def kz(s):
+        rho2 = (x - s) ** 2 + z ** 2
+        return q(s) * (-(1 - 2 * nu) * (mp.atan2(z, x - s) - mp.pi / 2) + (x - s) * z / rho2)
+
+    cuts = sorted({-a, -c, c, a} | ({x} if abs(x) < a else set()))
+    return (float(mp.quad(kx, cuts) / (2 * mp.pi * (1 - nu))), float(mp.quad(kz, cuts) / (2 * mp.pi * (1 - nu))))
+
+
+def test_partial_slip_against_flamant_quadrature():
+    """Normal plus tangential load (fx = 0.6, mu = 0.3): the product less its normal-load part against the
+    quadrature of the tangential kernels over mu [p(s; a) - p(s; c)], c from the stick-width relation."""
+    mp.mp.dps = 15
+    w, prof, mu, fx = 0.3, F2, 0.3, 0.6
+    ratio = float(api.stick_half_width(w, *prof, fx, periodic=False)[0])
+    Da, a = coefficients(w, prof)
+    Dc, c = coefficients(w * ratio, prof)
+    t = np.array([0.0, 0.7, -0.95, 1.4, -0.3])
+    zt = np.array([1e-9, 0.3, 0.05, 1.0, 2.5])
+    ux, uz, info = api.subsurface_displacement(t, zt, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
+    nx, nz, _ = disp(t, zt, w, prof)
+    for i in range(t.size):
+        rx, rz = flamant_tangential(a * t[i], a * zt[i], a, c, Da, Dc, mu, NU)
+        tol = info["error_estimate"][i] + 2e-14
+        assert abs(ux[i] - nx[i] - rx) <= tol, (t[i], zt[i], ux[i] - nx[i], rx)
+        assert abs(uz[i] - nz[i] - rz) <= tol, (t[i], zt[i], uz[i] - nz[i], rz)
+
+
+@pytest.mark.parametrize("x, z", [(0.4, 0.3), (-0.9, 1.1)])
+def test_partial_slip_hooke(x, z):
+    """Hooke's law against the product's stresses under the combined load, residual falling as h^2."""
+    w, prof, mu, fx = 0.3, F2, 0.4, 0.5
+    a = float(api._interior_ctx(w, *prof, False, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS).a_in)
+    s, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=False, mu=mu, fx=fx)
+    sxx, szz, sxz = (float(s[k]) for k in ("sigma_xx", "sigma_zz", "sigma_xz"))
+    tr = sxx + szz
+
+    def residual(h):
+        X = np.array([x + h, x - h, x, x])
+        Z = np.array([z, z, z + h, z - h])
+        ux, uz, _ = api.subsurface_displacement(X, Z, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
+        exx = (ux[0] - ux[1]) / (2 * h) / a
+        ezz = (uz[2] - uz[3]) / (2 * h) / a
+        gxz = ((ux[2] - ux[3]) + (uz[0] - uz[1])) / (2 * h) / a
+        return np.array([2 * (1 - NU) * exx - (sxx - NU * tr), 2 * (1 - NU) * ezz - (szz - NU * tr),
+                         (1 - NU) * gxz - sxz])
+
+    r1, r2 = np.max(np.abs(residual(4e-2))), np.max(np.abs(residual(1e-2)))
+    assert r1 > 1e-9
+    assert 12.0 < r1 / r2 < 20.0, (r1, r2)

@@ -301,3 +301,11 @@ def normal_displacements(Psi, G, zk, nu):
     2 mu u_x = (1 - 2 nu) Im Psi + z Re G,  2 mu u_z = -2 (1 - nu) Re Psi - z Im G,  2 mu = E* (1 - nu)."""
     k = 0.5 / (1.0 - nu)
     return k * ((1.0 - 2.0 * nu) * Psi.imag + zk * G.real), -Psi.real - k * zk * G.imag
+
+
+def shear_displacements(Phi, H, zk, nu):
+    """u_x/Delta_1, u_z/Delta_1 of a shear traction q (along +x on the body) from its potential H and primitive
+    Phi (units as ``normal_displacements``), docs/theory/wavy.md (W45):
+    2 mu u_x = -2 (1 - nu) Re Phi + z Im H,  2 mu u_z = -(1 - 2 nu) Im Phi + z Re H."""
+    k = 0.5 / (1.0 - nu)
+    return -Phi.real + k * zk * H.imag, k * (-(1.0 - 2.0 * nu) * Phi.imag + zk * H.real)
