@@ -66,8 +66,8 @@ def test_against_flamant_quadrature(w, profile):
     mp.mp.dps = 20
     D, a = coefficients(w, profile)
     rng = np.random.default_rng(7)
-    t = np.concatenate([[0.0, 0.5, -0.97, 1.3, -2.0], rng.uniform(-3.0, 3.0, 7)])
-    zt = np.concatenate([[1e-9, 0.2, 1.0, 0.05, 3.0], 10.0 ** rng.uniform(-6.0, math.log10(10 * math.pi / a), 7)])
+    t = np.concatenate([[0.0, 0.5, -0.97, 1.3, -2.0], rng.uniform(-3.0, 3.0, 6)])
+    zt = np.concatenate([[1e-9, 0.2, 1.0, 0.05, 3.0], 10.0 ** rng.uniform(-6.0, math.log10(10 * math.pi / a), 6)])
     ux, uz, err = disp(t, zt, w, profile)
     for i in range(t.size):
         rx, rz = flamant(a * t[i], a * zt[i], D, a, NU)
@@ -81,7 +81,7 @@ def test_against_flamant_quadrature(w, profile):
 def test_surface_uz_and_johnson_ux(w, profile):
     """z = 0: u_z is the surface displacement (W15) to its accuracy (inside and outside the contact), and u_x
     is Johnson's (1 - 2 nu)/(4 mu) [int_x^a p - int_-a^x p], here by mpmath quadrature of the pressure."""
-    mp.mp.dps = 20
+    mp.mp.dps = 15
     t = np.array([-2.5, -1.0, -0.6, 0.0, 0.3, 0.999, 1.7])
     ux, uz, err = disp(t, 0.0, w, profile)
     ref = api.displacement(t, w, *profile, periodic=False)[0]
@@ -109,15 +109,21 @@ def test_hooke_against_the_stresses_falls_as_h_squared(x, z):
     szz - nu (sxx + szz), (1 - nu)/a (du_x/dzt + du_z/dt) = sxz (p* units, t = x/a), with the product's stresses
     of ``subsurface``; central differences, so the residual falls as h^2 (by 16 at h/4) to rounding."""
     w, prof = 0.3, F2
-    a = float(api._interior_ctx(w, *prof, False, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS).a_in)
     s, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=False)
+    hooke_falls_as_h_squared(x, z, w, prof, s)
+
+
+def hooke_falls_as_h_squared(x, z, w, prof, s, mu=0.0, fx=0.0):
+    """The residual of plane-strain Hooke's law (normalised: see the test above) between central differences
+    of u at steps h = 4e-2 and 1e-2 and the stresses s; it must be visible and fall by about 16."""
+    a = float(api._interior_ctx(w, *prof, False, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS).a_in)
     sxx, szz, sxz = (float(s[k]) for k in ("sigma_xx", "sigma_zz", "sigma_xz"))
     tr = sxx + szz
 
     def residual(h):
         X = np.array([x + h, x - h, x, x])
         Z = np.array([z, z, z + h, z - h])
-        ux, uz, _ = disp(X, Z, w, prof)
+        ux, uz, _ = api.subsurface_displacement(X, Z, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
         exx = (ux[0] - ux[1]) / (2 * h) / a
         ezz = (uz[2] - uz[3]) / (2 * h) / a
         gxz = ((ux[2] - ux[3]) + (uz[0] - uz[1])) / (2 * h) / a
@@ -209,21 +215,5 @@ def test_partial_slip_against_flamant_quadrature():
 def test_partial_slip_hooke(x, z):
     """Hooke's law against the product's stresses under the combined load, residual falling as h^2."""
     w, prof, mu, fx = 0.3, F2, 0.4, 0.5
-    a = float(api._interior_ctx(w, *prof, False, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS).a_in)
     s, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=False, mu=mu, fx=fx)
-    sxx, szz, sxz = (float(s[k]) for k in ("sigma_xx", "sigma_zz", "sigma_xz"))
-    tr = sxx + szz
-
-    def residual(h):
-        X = np.array([x + h, x - h, x, x])
-        Z = np.array([z, z, z + h, z - h])
-        ux, uz, _ = api.subsurface_displacement(X, Z, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
-        exx = (ux[0] - ux[1]) / (2 * h) / a
-        ezz = (uz[2] - uz[3]) / (2 * h) / a
-        gxz = ((ux[2] - ux[3]) + (uz[0] - uz[1])) / (2 * h) / a
-        return np.array([2 * (1 - NU) * exx - (sxx - NU * tr), 2 * (1 - NU) * ezz - (szz - NU * tr),
-                         (1 - NU) * gxz - sxz])
-
-    r1, r2 = np.max(np.abs(residual(4e-2))), np.max(np.abs(residual(1e-2)))
-    assert r1 > 1e-9
-    assert 12.0 < r1 / r2 < 20.0, (r1, r2)
+    hooke_falls_as_h_squared(x, z, w, prof, s, mu, fx)

@@ -536,6 +536,18 @@ def _potential(c, row, t, zt):
     return G, Gt, e + es, c.table.converged[row]
 
 
+def _points(c, x_over_a, z_over_a, nu, mu, fx):
+    """The points below the surface of context c, flat: (shape, (t, zt, nu, mu, fx, row, a, N)); z >= 0 checked."""
+    t = np.asarray(x_over_a, dtype=float)
+    zt = np.asarray(z_over_a, dtype=float)
+    if np.any(~(zt >= 0.0)) or not np.all(np.isfinite(zt)):
+        raise ValueError("z_over_a must be finite and >= 0 (depth into the body)")
+    nu, mu, fx = (np.asarray(v, dtype=float) for v in (nu, mu, fx))
+    shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape, mu.shape, fx.shape)
+    flat = [np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu, mu, fx, c.row, c.a_in, c.N_in)]
+    return shape, flat
+
+
 def _stick(a, N, mu, fx, amplitudes, wavenumbers, periodic):
     """Per point (flat arrays): whether a tangential load acts, c/a and its admissibility (W43), and whether a
     stick zone remains (the corrective term at width c); one search per distinct case, not per point."""
@@ -576,16 +588,7 @@ def subsurface(names, x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenu
     if bad:
         raise ValueError(f"unknown subsurface field(s) {bad}; allowed: {', '.join(SUBSURFACE)}")
     c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
-    t = np.asarray(x_over_a, dtype=float)
-    zt = np.asarray(z_over_a, dtype=float)
-    if np.any(~(zt >= 0.0)) or not np.all(np.isfinite(zt)):
-        raise ValueError("z_over_a must be finite and >= 0 (depth into the body)")
-    nu, mu, fx = (np.asarray(v, dtype=float) for v in (nu, mu, fx))
-    shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape, mu.shape, fx.shape)
-    t, zt, nu, mu, fx = (np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu, mu, fx))
-    row = np.broadcast_to(c.row, shape).reshape(-1)
-    a = np.broadcast_to(c.a_in, shape).reshape(-1)
-    N = np.broadcast_to(c.N_in, shape).reshape(-1)
+    shape, (t, zt, nu, mu, fx, row, a, N) = _points(c, x_over_a, z_over_a, nu, mu, fx)
     shearing, ratio, admissible, sliding = _stick(a, N, mu, fx, amplitudes, wavenumbers, periodic)
     deep = zt > 0.0
 
@@ -710,16 +713,7 @@ def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, 
         raise ValueError("the displacements below the surface are produced for the single indenter "
                          "(periodic = False) only")
     c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, False, n_harmonics, rtol, max_terms)
-    t = np.asarray(x_over_a, dtype=float)
-    zt = np.asarray(z_over_a, dtype=float)
-    if np.any(~(zt >= 0.0)) or not np.all(np.isfinite(zt)):
-        raise ValueError("z_over_a must be finite and >= 0 (depth into the body)")
-    nu, mu, fx = (np.asarray(v, dtype=float) for v in (nu, mu, fx))
-    shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape, mu.shape, fx.shape)
-    t, zt, nu, mu, fx = (np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu, mu, fx))
-    row = np.broadcast_to(c.row, shape).reshape(-1)
-    a = np.broadcast_to(c.a_in, shape).reshape(-1)
-    N = np.broadcast_to(c.N_in, shape).reshape(-1)
+    shape, (t, zt, nu, mu, fx, row, a, N) = _points(c, x_over_a, z_over_a, nu, mu, fx)
     zk = a * zt
 
     def primitive(ctx, rows, tt, zz, aa):
