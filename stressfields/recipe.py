@@ -316,7 +316,9 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
     if scen.complete and not problems:
         scen.complete(values)
     if scen.check and not problems:
-        marked = CheckValues(values, tuple(k for k in columns if k in values))
+        listed = output.get("variables")
+        listed = tuple(v for v in listed if isinstance(v, str)) if isinstance(listed, list) else ()
+        marked = CheckValues(values, tuple(k for k in columns if k in values), listed)
         problems += scen.check(marked, physical, method_t.get("method", "auto"))
 
     swept = tuple(p.name for p in scen.parameters
@@ -423,13 +425,15 @@ def _sweep_sizes(params: dict, declared: dict, problems: list[str], n_points: in
 
 
 class CheckValues(dict):
-    """The values a scenario's ``check`` receives: the recipe's values, and ``points``, the names
+    """The values a scenario's ``check`` receives: the recipe's values, ``points``, the names
     that are [points] columns: 1-D arrays that vary together (one value per point, compared
-    element-wise), where a swept array is an axis of its own (every combination is computed)."""
+    element-wise), where a swept array is an axis of its own (every combination is computed), and
+    ``variables``, the names the recipe's output.variables lists (empty when it lists none)."""
 
-    def __init__(self, values: Mapping, points: tuple[str, ...] = ()):
+    def __init__(self, values: Mapping, points: tuple[str, ...] = (), variables: tuple[str, ...] = ()):
         super().__init__(values)
         self.points = tuple(points)
+        self.variables = tuple(variables)
 
 
 def _points_table(data: dict, declared: dict, params: dict, scen: Scenario, base: Path | None,

@@ -101,3 +101,36 @@ def test_hostile_depth_and_tangential_load(tmp_path, capsys, change, words):
 def test_approximate_methods_refuse_depth_and_tangential_load(tmp_path, capsys, change, words):
     _exit_2(tmp_path, capsys, {"scenario": "wavy", "method": {"method": "approximate_eq18"},
                                "parameters": {**F2, "a": 0.3, "domain": "nonperiodic", **change}}, words)
+
+
+def test_displacements_below_the_single_indenter():
+    """u_x, u_z by name: the direct physics call, u_z at z = 0 the surface uz to its accuracy, metres in
+    physical mode (scaled by Delta_1)."""
+    x, z = np.linspace(-2, 2, 9), np.array([0.0, 0.3, 2.0])
+    ds = generate({"domain": "nonperiodic", "x": list(x), "z": list(z), "nu": 0.25},
+                  method={"rtol": 1e-10}, output={"variables": ["u_x", "u_z", "uz"]})
+    ux, uz, _ = api.subsurface_displacement(x, z[:, None], 0.6, *F2.values(), periodic=False, nu=0.25, rtol=1e-10)
+    np.testing.assert_array_equal(ds.u_x.values, ux)
+    np.testing.assert_array_equal(ds.u_z.values, uz)
+    np.testing.assert_allclose(ds.u_z.sel(z=0.0), ds.uz, rtol=0, atol=1e-13)
+    assert (ds.validity == 0).all()
+    amps = [1e-6, 2e-8]
+    phys = sf.generate({"scenario": "wavy", "parameters": {
+        "amplitudes": amps, "wavenumbers": F2["wavenumbers"], "E": 2e11, "nu": 0.25, "lambda_1": 1e-3, "a": 0.6,
+        "domain": "nonperiodic", "x": [0.0, 0.3 * 0.6 * 1e-3 / 2], "z": [0.5 * 0.6 * 1e-3 / 2]},
+        "output": {"variables": ["u_x", "u_z"]}}).compute()
+    ref = generate({"domain": "nonperiodic", "x": [0.0, 0.3], "z": [0.5], "nu": 0.25},
+                   output={"variables": ["u_x", "u_z"]})
+    assert phys.u_x.attrs["units"] == "m"
+    np.testing.assert_allclose(phys.u_z.values / amps[0], ref.u_z.values, rtol=1e-12)
+    np.testing.assert_allclose(phys.u_x.values / amps[0], ref.u_x.values, rtol=1e-12, atol=1e-15)
+
+
+@pytest.mark.parametrize("top, words", [
+    ({"parameters": {**F2, "a": 0.3, "z": 0.5}}, ["u_x, u_z below the surface", "domain = 'nonperiodic'",
+                                                  "got domain = 'periodic'"]),
+    ({"parameters": {**F2, "a": 0.3, "z": 0.5, "domain": "nonperiodic"}, "method": {"method": "approximate_eq18"}},
+     ["approximate_eq18", "u_x, u_z need an exact method"]),
+])
+def test_displacements_refused_where_not_produced(tmp_path, capsys, top, words):
+    _exit_2(tmp_path, capsys, {"scenario": "wavy", **top, "output": {"variables": ["u_x", "u_z"]}}, words)

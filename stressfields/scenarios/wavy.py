@@ -98,6 +98,12 @@ _INTERIOR = ("Plane strain, from the complex potential of the surface tractions 
              "(W38). The mean pressure's k = 0 mode is kept (periodic: sigma_xx = sigma_zz = -p_inf as z -> inf, the "
              "limit of the sum over all periods; (W37)). At z = 0 sigma_zz = -pressure and sigma_xz = -shear_traction "
              "exactly. Within error_estimate (p*).")
+_DISPLACEMENT = ("Single indenter only (domain = 'nonperiodic'). Plane strain, from the potential G and its closed "
+                 "primitive Psi (docs/theory/wavy.md (W45)): 2 mu_s u_x = (1 - 2 nu) Im Psi + z Re G, 2 mu_s u_z = "
+                 "-2 (1 - nu) Re Psi - z Im G (mu_s the shear modulus), plus the shear traction's terms under a "
+                 "tangential load. Datum that of uz: log kernel ln|2 pi (x - xi)/lambda_1|, so u_z at z = 0 is uz; "
+                 "u_x is odd about x = 0 under normal load (at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) times the load "
+                 "right of x less that left of it). Within about 1e-13 Delta_1 in the tests.")
 _PEAK = ("Grid of 41 x 41 points over 0 <= z <= 3a and 0 <= x <= 2a (both signs of x under a tangential load; at "
          "most half a period), refined by 16 zooms of a 9 x 9 grid (docs/theory/wavy.md (W44)); the value to the "
          "fields' accuracy, the position to about 1e-8 a (the field is flat at its peak).")
@@ -182,6 +188,9 @@ VARIABLES = (
              comment="NaN (validity = 4) at z = 0 on a contact edge and, under partial slip, a stick edge, where the "
                      "limit depends on the direction of approach. Not covered by error_estimate.",
              label="dp_h/dz"),
+    *(Variable(f"u_{c}", f"displacement u_{c} at depth z (z = 0: the surface; {what})", units_physical="m",
+               scale=DELTA_1, comment=_DISPLACEMENT, label=f"displacement u_{c}")
+      for c, what in (("x", "along +x"), ("z", "positive into the body"))),
     Variable("shear_traction", "shear traction q(x) on the half-plane along +x at the surface point (partial slip: "
              "mu [p(x; a) - p(x; c)])", units_physical="Pa", scale=PSTAR, dims=SURFACE + SHEAR,
              recorded_when=("fx", "tangential_force"),
@@ -315,6 +324,13 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
         problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
     problems += _check_loads(values, physical, method)
+    moved = [v for v in ("u_x", "u_z") if v in getattr(values, "variables", ())]
+    if moved and (isinstance(domain := values.get("domain"), np.ndarray) or domain != "nonperiodic"):
+        problems.append(f"output.variables: {', '.join(moved)} below the surface are produced for the single "
+                        f"indenter only; they need domain = 'nonperiodic', got domain = {_show(domain)}")
+    elif moved and method in WAVY_APPROXIMATE_METHODS:
+        problems.append(f"method.method = {method!r} is an approximate pressure; {', '.join(moved)} need an exact "
+                        f"method ({', '.join(WAVY_SERIES_METHODS)})")
     domain = values.get("domain")
     if method in WAVY_APPROXIMATE_METHODS and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
         problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "

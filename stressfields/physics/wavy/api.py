@@ -536,6 +536,32 @@ def _potential(c, row, t, zt):
     return G, Gt, e + es, c.table.converged[row]
 
 
+def _points(c, x_over_a, z_over_a, nu, mu, fx):
+    """The points below the surface of context c, flat: (shape, (t, zt, nu, mu, fx, row, a, N)); z >= 0 checked."""
+    t = np.asarray(x_over_a, dtype=float)
+    zt = np.asarray(z_over_a, dtype=float)
+    if np.any(~(zt >= 0.0)) or not np.all(np.isfinite(zt)):
+        raise ValueError("z_over_a must be finite and >= 0 (depth into the body)")
+    nu, mu, fx = (np.asarray(v, dtype=float) for v in (nu, mu, fx))
+    shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape, mu.shape, fx.shape)
+    flat = [np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu, mu, fx, c.row, c.a_in, c.N_in)]
+    return shape, flat
+
+
+def _stick(a, N, mu, fx, amplitudes, wavenumbers, periodic):
+    """Per point (flat arrays): whether a tangential load acts, c/a and its admissibility (W43), and whether a
+    stick zone remains (the corrective term at width c); one search per distinct case, not per point."""
+    shearing = mu * fx > 0.0
+    ratio, admissible = np.ones(a.shape), np.ones(a.shape, dtype=bool)
+    if shearing.any():
+        keys = np.stack([a[shearing], N[shearing], fx[shearing]])
+        uniq, inv = np.unique(keys, axis=1, return_inverse=True)
+        r_u, ok_u = stick_half_width(uniq[0] / np.pi, amplitudes, wavenumbers, uniq[2], periodic=periodic,
+                                     n_harmonics=uniq[1].astype(int))
+        ratio[shearing], admissible[shearing] = r_u[inv.reshape(-1)], ok_u[inv.reshape(-1)]
+    return shearing, ratio, admissible, shearing & (ratio > 0.0)
+
+
 def subsurface(names, x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                n_harmonics=None, nu=0.3, mu=0.0, fx=0.0, rtol=DEFAULT_RTOL, max_terms=DEFAULT_MAX_TERMS,
                surface_pressure=None):
@@ -562,25 +588,8 @@ def subsurface(names, x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenu
     if bad:
         raise ValueError(f"unknown subsurface field(s) {bad}; allowed: {', '.join(SUBSURFACE)}")
     c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
-    t = np.asarray(x_over_a, dtype=float)
-    zt = np.asarray(z_over_a, dtype=float)
-    if np.any(~(zt >= 0.0)) or not np.all(np.isfinite(zt)):
-        raise ValueError("z_over_a must be finite and >= 0 (depth into the body)")
-    nu, mu, fx = (np.asarray(v, dtype=float) for v in (nu, mu, fx))
-    shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape, mu.shape, fx.shape)
-    t, zt, nu, mu, fx = (np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu, mu, fx))
-    row = np.broadcast_to(c.row, shape).reshape(-1)
-    a = np.broadcast_to(c.a_in, shape).reshape(-1)
-    N = np.broadcast_to(c.N_in, shape).reshape(-1)
-    shearing = mu * fx > 0.0
-    ratio, admissible = np.ones(t.shape), np.ones(t.shape, dtype=bool)
-    if shearing.any():              # one search per distinct case, not per point
-        keys = np.stack([a[shearing], N[shearing], fx[shearing]])
-        uniq, inv = np.unique(keys, axis=1, return_inverse=True)
-        r_u, ok_u = stick_half_width(uniq[0] / np.pi, amplitudes, wavenumbers, uniq[2], periodic=periodic,
-                                     n_harmonics=uniq[1].astype(int))
-        ratio[shearing], admissible[shearing] = r_u[inv.reshape(-1)], ok_u[inv.reshape(-1)]
-    sliding = shearing & (ratio > 0.0)           # a stick zone: the corrective term at width c
+    shape, (t, zt, nu, mu, fx, row, a, N) = _points(c, x_over_a, z_over_a, nu, mu, fx)
+    shearing, ratio, admissible, sliding = _stick(a, N, mu, fx, amplitudes, wavenumbers, periodic)
     deep = zt > 0.0
 
     # the potential of the full-width pressure and, under partial slip, of the stick-width one
@@ -685,3 +694,54 @@ def subsurface_peaks(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
                 arr[flat] = val
             border[flat] |= (abs(x0) >= xmax) or (z0 >= PEAK_DEPTH)
     return {**out, "on_border": border}
+
+
+def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
+                            n_harmonics=None, nu=0.3, mu=0.0, fx=0.0, rtol=DEFAULT_RTOL,
+                            max_terms=DEFAULT_MAX_TERMS):
+    """u_x/Delta_1 and u_z/Delta_1 at (x/a, z/a), z >= 0 (u_z positive into the body, u_x along +x), single
+    indenter, docs/theory/wavy.md (W45); returns (u_x, u_z, info).
+
+    Normal load, and under a tangential load fx = Q/(mu P) with friction coefficient mu the displacements of
+    the shear traction q = mu [p(x; a) - p(x; c)] of ``subsurface`` added (uncoupled).  Datum: that of the
+    surface ``displacement`` (the log kernel ln|x - xi| in the lambda_1 = 2 pi unit), which u_z of the normal
+    load reproduces at z = 0 and u_x of the shear traction likewise; the other component is odd about the
+    load's centre: at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) [int_x^inf - int_-inf^x] of the traction (mu_s the
+    shear modulus).  info: "error_estimate" a bound per point (Delta_1 units), "converged" as the stresses'.
+    The periodic surface is not produced: no closed primitive of its potential is implemented (see (W45))."""
+    if periodic:
+        raise ValueError("the displacements below the surface are produced for the single indenter "
+                         "(periodic = False) only")
+    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, False, n_harmonics, rtol, max_terms)
+    shape, (t, zt, nu, mu, fx, row, a, N) = _points(c, x_over_a, z_over_a, nu, mu, fx)
+    zk = a * zt
+
+    def primitive(ctx, rows, tt, zz, aa):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            G, _, eG, _ = _interior.nonperiodic_potential(ctx.table, rows, tt, zz)
+        Psi, ePsi = _interior.nonperiodic_primitive(ctx.table, rows, tt, zz, aa)
+        # the bound of both displacement components: Psi's and z |G|'s over 2 (1 - nu) <= 1
+        return G, Psi, ePsi + aa * zz * eG, ctx.table.converged[rows]
+
+    G, Psi, err, conv = primitive(c, row, t, zt, a)
+    ux, uz = _interior.normal_displacements(Psi, G, zk, nu)
+    shearing, ratio, admissible, sliding = _stick(a, N, mu, fx, amplitudes, wavenumbers, False)
+    if shearing.any():
+        # the shear traction's potential and primitive: mu times those of p(x; a) less p(x; c) (W43)
+        H, Phi = mu * G, mu * Psi
+        err = err + np.where(shearing, mu * err, 0.0)
+        if sliding.any():
+            cc = _interior_ctx(a[sliding] / np.pi * ratio[sliding], amplitudes, wavenumbers, False, N[sliding],
+                               rtol, max_terms)
+            k = 1.0 / ratio[sliding]
+            Gc, Pc, ec, okc = primitive(cc, cc.row, t[sliding] * k, zt[sliding] * k, cc.a_in)
+            H[sliding] -= mu[sliding] * Gc
+            Phi[sliding] -= mu[sliding] * Pc
+            err[sliding] += mu[sliding] * ec
+            conv[sliding] &= okc
+        tx, tz = _interior.shear_displacements(Phi, H, zk, nu)
+        ux = np.where(shearing, ux + tx, ux)
+        uz = np.where(shearing, uz + tz, uz)
+    info = {"error_estimate": err, "converged": conv, "stick_admissible": admissible | ~shearing}
+    shaped = lambda v: np.asarray(v).reshape(shape)
+    return shaped(ux), shaped(uz), {k: shaped(v) for k, v in info.items()}

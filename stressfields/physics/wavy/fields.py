@@ -24,7 +24,9 @@ PER_CASE: tuple[str, ...] = ("mean_pressure", "peak_pressure", "max_pressure", "
 INTERIOR: tuple[str, ...] = api.SUBSURFACE
 LOADED: tuple[str, ...] = ("stick_half_width", "tau_max_peak", "tau_max_peak_x", "tau_max_peak_depth",
                            "von_mises_peak", "von_mises_peak_x", "von_mises_peak_depth", "peak_validity")
-FIELDS: tuple[str, ...] = POINTWISE + PER_CASE + INTERIOR + LOADED
+#: the displacements below the surface (single indenter only: no closed primitive of the periodic potential)
+DISPLACEMENTS: tuple[str, ...] = ("u_x", "u_z")
+FIELDS: tuple[str, ...] = POINTWISE + PER_CASE + INTERIOR + LOADED + DISPLACEMENTS
 _PEAK = ("validity", "peak_pressure", "n_terms", "error_estimate", "converged")
 
 
@@ -63,7 +65,9 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
     * sigma_xx ... dpdz, shear_traction -- at depth z_over_a = z/a (plane strain with Poisson's ratio
       nu; tangential load fx = Q/(mu P) with friction coefficient mu), ``api.subsurface``, (W36)-(W43);
       stick_half_width (c/a) and the peaks of tau_max and von Mises with their positions (x/a, z/a),
-      ``api.subsurface_peaks`` (W44); peak_validity 4 where a search ended on its box's border.
+      ``api.subsurface_peaks`` (W44); peak_validity 4 where a search ended on its box's border;
+    * u_x, u_z -- the displacements /Delta_1 at depth z_over_a under the same loads (datum of uz),
+      ``api.subsurface_displacement``, (W45); single indenter only (ValueError for periodic=True).
 
     Per-contact quantities have the shape of broadcast(two_a_over_lambda1, n_harmonics), pointwise
     ones that broadcast with x_over_a.  Pure NumPy/SciPy, no state.
@@ -73,9 +77,12 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
     if unknown:
         raise ValueError(f"unknown wavy field(s) {', '.join(map(repr, unknown))}; allowed: {', '.join(FIELDS)}")
     approx = approximation(method)
-    if approx is not None and (wanted_interior := set(names) & set(INTERIOR + LOADED)):
+    if approx is not None and (wanted_interior := set(names) & set(INTERIOR + LOADED + DISPLACEMENTS)):
         raise ValueError(f"method {method!r} replaces the pressure only; the field below the surface "
                          f"({', '.join(sorted(wanted_interior))}) needs an exact method")
+    if periodic and (wanted_disp := set(names) & set(DISPLACEMENTS)):
+        raise ValueError(f"{', '.join(sorted(wanted_disp))} below the surface are produced for the single indenter "
+                         "(periodic=False) only")
     if approx is not None and periodic:
         raise ValueError(f"method {method!r} is the paper's approximation for a non-periodic indenter; "
                          "it needs periodic=False")
@@ -102,6 +109,10 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
         values, sub = api.subsurface(tuple(n for n in names if n in INTERIOR), x_over_a, z_over_a, *table, **series,
                                      nu=nu, mu=mu, fx=fx, surface_pressure=surface)
         out.update(values)
+    moved = wanted.intersection(DISPLACEMENTS)
+    if moved:
+        ux, uz, disp = api.subsurface_displacement(x_over_a, z_over_a, *table, **series, nu=nu, mu=mu, fx=fx)
+        out.update(u_x=ux, u_z=uz)
     loaded = dict(periodic=periodic, n_harmonics=n_harmonics)
     if "stick_half_width" in wanted:
         out["stick_half_width"] = api.stick_half_width(two_a_over_lambda1, amplitudes, wavenumbers,
@@ -121,6 +132,9 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
         if "validity" in wanted:
             v = (np.int8(2) if approx is not None else
                  np.where(info["converged"], np.where(substituted, 3, 0), 1).astype(np.int8))
+            if moved:
+                v = np.where(disp["converged"], v, 1)
+                v = np.where(disp["stick_admissible"], v, api.STICK_NOT_ADMISSIBLE).astype(np.int8)
             if interior:
                 v = np.where(sub["converged"], v, 1)
                 if "dpdz" in interior:

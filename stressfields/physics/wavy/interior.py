@@ -258,3 +258,55 @@ def plane_strain_invariants(sxx, szz, sxz, nu):
     s2 = np.maximum(np.minimum(hi, syy), lo)
     vm = np.sqrt(0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2) + 3.0 * sxz * sxz)
     return syy, s1, s2, s3, 0.5 * (s1 - s3), vm
+
+
+def nonperiodic_primitive(table, row, t, zt, a):
+    """(Psi, err_Psi) of the single indenter at x/a = t, z/a = zt >= 0: the primitive of G in kernel units,
+    Psi(zeta) = (1/pi) int p(s) [log(zeta - s) - i pi/2] ds, docs/theory/wavy.md (W45).
+
+    With Z = zeta/a = (omega + 1/omega)/2, dZ = (1 - omega^-2) d omega/2, so
+    int omega^n dZ = I_n = [omega^(n+1)/(n+1) - omega^(n-1)/(n-1)]/2 (n >= 3), I_1 = [omega^2/2 + log(Z + r)]/2,
+    and Psi = a sum_m D_m I_(2m+1) - (a D_0/2) log(2/a) - i pi a D_0/4: the constant makes Psi - (P/pi) log zeta
+    vanish at infinity (P = pi a D_0/2, the load in kernel units: the log datum of (W15)) and the imaginary
+    one makes Im Psi odd in x. log(Z + r) is principal: Z + r = 1/omega lies in the upper half-plane.
+    Error: |I_n| <= 1/2 for n >= 3 (|omega| <= 1), so the series tail bound of G, times a/2, plus rounding of
+    a few ulps of the largest term."""
+    Z1 = (t - 1.0) + 1j * zt
+    Z2 = (t + 1.0) + 1j * zt
+    r = np.sqrt(Z1) * np.sqrt(Z2)
+    inv = (t + 1j * zt) + r                   # 1/omega, no cancellation in the upper half-plane
+    om = 1.0 / inv
+    om2 = om * om
+    Psi = np.zeros(t.shape, complex)
+    for one in np.unique(row):                # one row at a time: scalar coefficients, its own length
+        sel = row == one
+        o2 = om2[sel]
+        # sum_{m >= 1} D_m/2 [o2^(m+1)/(2m+2) - o2^m/(2m)] = o2/2 sum_{m >= 1} D_m o2^(m-1) [o2/(2m+2) - 1/(2m)]
+        acc = np.zeros(sel.sum(), complex)
+        for m in range(int(table.K[one]) - 1, 0, -1):
+            c = table.D[one, m]
+            acc = acc * o2 + c * (o2 / (2.0 * m + 2.0) - 1.0 / (2.0 * m))
+        D0 = table.D[one, 0]
+        Psi[sel] = 0.5 * o2 * acc + 0.5 * D0 * (0.5 * o2 + np.log(inv[sel]))
+    D0 = table.D[row, 0]
+    Psi = a * Psi - 0.5 * a * D0 * np.log(2.0 / a) - 0.25j * np.pi * a * D0
+    sumD = np.sum(np.abs(table.D), axis=1)[row]
+    rounding = 8.0 * _U * a * (sumD * (1.0 + table.K[row]) + np.abs(D0) * (np.abs(np.log(np.abs(inv)))
+                                                                           + abs(np.log(2.0 / a)) + np.pi))
+    return Psi, 0.5 * a * table.err[row] + rounding
+
+
+def normal_displacements(Psi, G, zk, nu):
+    """u_x/Delta_1, u_z/Delta_1 of the normal pressure from its potential G and primitive Psi (kernel units,
+    p in p* = E* Delta_1/2 units, zk the depth in kernel units), docs/theory/wavy.md (W45):
+    2 mu u_x = (1 - 2 nu) Im Psi + z Re G,  2 mu u_z = -2 (1 - nu) Re Psi - z Im G,  2 mu = E* (1 - nu)."""
+    k = 0.5 / (1.0 - nu)
+    return k * ((1.0 - 2.0 * nu) * Psi.imag + zk * G.real), -Psi.real - k * zk * G.imag
+
+
+def shear_displacements(Phi, H, zk, nu):
+    """u_x/Delta_1, u_z/Delta_1 of a shear traction q (along +x on the body) from its potential H and primitive
+    Phi (units as ``normal_displacements``), docs/theory/wavy.md (W45):
+    2 mu u_x = -2 (1 - nu) Re Phi + z Im H,  2 mu u_z = -(1 - 2 nu) Im Phi + z Re H."""
+    k = 0.5 / (1.0 - nu)
+    return -Phi.real + k * zk * H.imag, k * (-(1.0 - 2.0 * nu) * Phi.imag + zk * H.real)
