@@ -23,7 +23,9 @@ SHAPE = (A.size, N.size, X.size)
 
 
 def _fields(ia, iN, ix, periodic, rtol):
-    out = wavy.fields(wavy.FIELDS, X[ix][None, None, :], A[ia][:, None, None], **F3, periodic=periodic,
+    # the displacements below the surface are solved for the single indenter only
+    names = [f for f in wavy.FIELDS if not (periodic and f in ("u_x", "u_z"))]
+    out = wavy.fields(names, X[ix][None, None, :], A[ia][:, None, None], **F3, periodic=periodic,
                       n_harmonics=N[iN][None, :, None], rtol=rtol)
     return {k: np.broadcast_to(v, (len(ia), len(iN), len(ix))) for k, v in out.items()}
 
