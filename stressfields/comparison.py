@@ -263,10 +263,22 @@ def _count(sweep) -> int | str:
 
 
 def _reference(derived: dict, label: str, source: str) -> xr.Dataset:
+    import sys
+
+    import dask
+
     from .api import generate
 
+    scheduler = {}
+    if "distributed" not in sys.modules and dask.config.get("scheduler", None) is None:
+        import dask.threaded
+
+        # the threaded scheduler itself: the default (and one named) makes dask look for a distributed
+        # client first, importing dask.distributed when installed (0.15 s of a small comparison here);
+        # a user's own client (distributed imported) or configured scheduler is kept
+        scheduler["scheduler"] = dask.threaded.get
     try:
-        return generate(derived).compute()
+        return generate(derived).compute(**scheduler)
     except RecipeError as exc:
         raise CompareError(f"{label} with the nodes of {source} as [points] (points.<column>[i] is data row i, "
                            "from 0, in the recipe's units): " + "; ".join(exc.problems)) from None
