@@ -312,7 +312,7 @@ def summary(ds: xr.Dataset) -> dict[str, dict]:
     return out
 
 
-#: what a report folder holds (`write_report`); a folder holding anything else is never replaced
+#: what a report folder holds (`fe.command`); a folder holding anything else is never replaced
 REPORT_FILES = ("comparison.nc", "comparison.png", "report.md", "report.json", "convergence.png")
 #: the per-file tables of a mesh sequence or an Exodus history (fe/report.py names them)
 REPORT_NUMBERED = re.compile(r"^comparison_\d+\.(nc|png)$")
