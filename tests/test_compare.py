@@ -139,6 +139,10 @@ def test_netcdf_user_data(tmp_path, example):
         data[name] = ("node_index", table[:, k], {"units": unit.rstrip("]")} if unit else {})
     path = tmp_path / "nodes.nc"
     xr.Dataset(data).to_netcdf(path)
+    in_memory = compare(RECIPE, xr.Dataset(data), tolerance=0.01)        # the same as a dataset
+    for name in GEN.VARIABLES:
+        np.testing.assert_array_equal(in_memory[f"{name}_difference"].values, example[f"{name}_difference"].values)
+    assert in_memory.node.values[GEN.PLANTED_INDEX] == GEN.FIRST_NODE_ID + GEN.PLANTED_INDEX
     rc, out = _cli(tmp_path, "--tolerance", "0.01", data=path)
     assert rc == 1
     with xr.open_dataset(out / "comparison.nc") as ds:
@@ -367,3 +371,25 @@ def test_keywords_are_checked_in_one_line():
         with pytest.raises(CompareError, match=words) as info:
             compare(recipe, data, **kw)
         assert "\n" not in str(info.value)
+
+
+def test_an_exodus_history_gives_one_dataset_per_step_and_step_picks_one(tmp_path, example):
+    """Three time steps of the example's nodes, z up, in mm and MPa (Exodus carries no units): steps 1
+    and 3 are the CSV's values, so their differences are the example's; step 2 is 1.01 x them."""
+    from test_fe_validate import _exodus
+
+    header, table = read_csv(NODES)
+    values = table[:, 4:] * np.array([1.0, 1.0, 1.0, -1.0])
+    names = [h.split("[")[0] for h in header[4:]]
+    up = table[:, 1:4] * np.array([1.0, 1.0, -1.0])
+    exo = _exodus(tmp_path / "model.e", up, names, [values, values * 1.01, values])
+    every = compare(RECIPE, exo, z_up=True, units="length=mm,stress=MPa")
+    assert isinstance(every, list) and len(every) == 3
+    third = compare(RECIPE, exo, z_up=True, units={"length": "mm", "stress": "MPa"}, step=3)
+    for ds in (every[0], every[2], third):
+        for name in GEN.VARIABLES:
+            np.testing.assert_allclose(ds[f"{name}_difference"].values, example[f"{name}_difference"].values,
+                                       rtol=0, atol=1e-12 * GEN.hertz()[1])
+    np.testing.assert_allclose(every[1].sigma_zz_user.values, 1.01 * every[0].sigma_zz_user.values, rtol=1e-15)
+    with pytest.raises(CompareError, match="--step 4 is not a time step of the file: it has 3"):
+        compare(RECIPE, exo, z_up=True, units="length=mm,stress=MPa", step=4)
