@@ -56,7 +56,7 @@ from .scenarios.base import ARRAY, Parameter, Scenario
 from .options import output_option_problems
 from .units import allowed as allowed_units, factor as unit_factor, show_unit
 
-TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot", "splits")
+TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot", "splits", "compare")
 #: the dimension along which the [points] columns vary together (last, after the swept ones)
 POINT = "point"
 OUTPUT_KEYS = ("variables", "chunks", "dtype", "compression", "nonfinite")
@@ -257,6 +257,12 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
         for key in table:
             if key not in allowed:
                 problems.append(f"unknown key '{tname}.{key}'; allowed: {', '.join(allowed)}")
+    if "compare" in data:       # used by `compare` alone (the units of a VTU or Exodus file); checked here too
+        from .fe.units import compare_table_problem
+
+        problem = compare_table_problem(data["compare"])
+        if problem:
+            problems.append(problem)
 
     declared = {p.name: p for p in scen.parameters}
     # a scenario without a switch works in physical units only

@@ -117,7 +117,7 @@ def _ordered(ds: xr.Dataset, order: list[str]) -> xr.Dataset:
 
 
 def publish_folder(partial: Path, target: Path, overwrite: bool) -> None:
-    """Rename the complete folder (a store, `comparison.write_report`'s report) onto ``target``. A
+    """Rename the complete folder (a store, `comparison.publish_report`'s report) onto ``target``. A
     rename replaces an empty directory, so the name is checked first, under the run lock. The folder
     replaced by ``overwrite`` is moved aside in one rename and removed after: the target is always
     either the old folder or the new one."""

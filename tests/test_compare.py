@@ -69,7 +69,7 @@ def test_planted_error_is_found_at_its_node_with_its_size(example):
     assert planted["worst_point"] == GEN.PLANTED_INDEX
     assert planted["worst_node"] == GEN.FIRST_NODE_ID + GEN.PLANTED_INDEX
     assert abs(planted["max_abs_difference_over_scale"] - abs(off[GEN.PLANTED_VARIABLE][GEN.PLANTED_INDEX])) < ROUNDING
-    assert planted["result"] == "FAIL" and example.attrs["compare_result"] == "FAIL"
+    assert planted["result"].startswith("FAIL: max") and example.attrs["compare_result"] == "FAIL"
     assert planted["worst_coordinates"] == ", ".join(
         f"{c} = {xyz[c][GEN.PLANTED_INDEX]:.6g} mm" for c in ("x", "y", "z"))
     for name in GEN.VARIABLES:
@@ -139,6 +139,10 @@ def test_netcdf_user_data(tmp_path, example):
         data[name] = ("node_index", table[:, k], {"units": unit.rstrip("]")} if unit else {})
     path = tmp_path / "nodes.nc"
     xr.Dataset(data).to_netcdf(path)
+    in_memory = compare(RECIPE, xr.Dataset(data), tolerance=0.01)        # the same as a dataset
+    for name in GEN.VARIABLES:
+        np.testing.assert_array_equal(in_memory[f"{name}_difference"].values, example[f"{name}_difference"].values)
+    assert in_memory.node.values[GEN.PLANTED_INDEX] == GEN.FIRST_NODE_ID + GEN.PLANTED_INDEX
     rc, out = _cli(tmp_path, "--tolerance", "0.01", data=path)
     assert rc == 1
     with xr.open_dataset(out / "comparison.nc") as ds:
@@ -233,7 +237,7 @@ def test_recipe_sweeps_what_the_nodes_do_not_give(tmp_path):
     with pytest.raises(CompareError, match="sweeps 'y' .2 values. but the user data has no 'y' column"):
         compare(swept, {"x": [0.1, 0.2], "sigma_xx": [-1.0, -1.0]})
     # normalised mode: a column in mm cannot become the dimensionless x
-    with pytest.raises(CompareError, match=r"unit 'mm' cannot be converted .* normalised mode \('1'\)"):
+    with pytest.raises(CompareError, match=r"unit 'mm' is not a pure number .* normalised mode \('1'\)"):
         compare({"scenario": "parabolic", "parameters": {"nu": 0.3}}, {"x[mm]": [0.1], "sigma_xx": [-1.0]})
 
 
@@ -244,7 +248,7 @@ def test_normalised_mode_scale_is_one():
                  {"x": [0.0, 2.0], "y": [0.0, 0.0], "sigma_zz": [-1.4, 0.0]}, tolerance=0.05)
     s = summary(ds)["sigma_zz"]
     assert math.isclose(s["max_abs_difference_over_scale"], 0.1, rel_tol=1e-12) and s["worst_point"] == 0
-    assert s["scale"] == 1.0 and s["result"] == "FAIL"
+    assert s["scale"] == 1.0 and s["result"].startswith("FAIL: max")
 
 
 def test_readme_says_what_the_example_reports(example):
@@ -286,3 +290,106 @@ def test_wavy_scales_in_physical_mode():
 def test_columns_of_different_lengths():
     with pytest.raises(CompareError, match="one length"):
         compare({"scenario": "parabolic", "parameters": {"nu": 0.3}}, {"x": [0.1, 0.2], "sigma_xx": [-1.0]})
+
+
+# -- the API is the command's path: its switches as keywords, units from the recipe --------------------
+
+CONVERGENCE = EXAMPLE.parent / "fe_convergence"
+
+
+def _recipe_with(tmp_path, extra: str) -> Path:
+    path = tmp_path / "recipe.toml"
+    path.write_text((CONVERGENCE / "recipe.toml").read_text() + "\n" + extra)
+    return path
+
+
+def test_z_up_keyword_flips_z_and_the_shears_exactly(tmp_path, example):
+    """The model with z up: z, sigma_xz negated (a body at z <= 0) gives the same differences, exactly."""
+    header, table = read_csv(NODES)
+    up = table.copy()
+    for k, h in enumerate(header):
+        if h.split("[")[0] in ("z", "sigma_xz"):
+            up[:, k] = -up[:, k]
+    path = write_csv(tmp_path / "up.csv", header, up)
+    with pytest.raises(CompareError, match="give --z-up"):
+        compare(RECIPE, path)
+    ds = compare(RECIPE, path, tolerance=0.01, z_up=True)
+    for name in GEN.VARIABLES:
+        np.testing.assert_array_equal(ds[f"{name}_difference"].values, example[f"{name}_difference"].values)
+    assert ds.attrs["compare_result"] == "FAIL" and "z up in the file" in ds.attrs["compare_frame"]
+
+
+def test_recipe_units_serve_a_file_without_units_and_the_keyword_overrides_them(tmp_path):
+    """A VTU carries no units: the recipe's [compare] units (mm, N/mm^2) read it as the Abaqus-style CSV
+    of the same nodes, whose header says mm and N/mm^2; `units=` (the CLI's --units) wins over them."""
+    pytest.importorskip("meshio")
+    csv = compare(CONVERGENCE / "recipe.toml", CONVERGENCE / "L1.csv", axisymmetric=True)
+    with pytest.raises(CompareError, match="give --units"):
+        compare(CONVERGENCE / "recipe.toml", CONVERGENCE / "L1.vtu", axisymmetric=True)
+    good = _recipe_with(tmp_path, '[compare]\nunits = { length = "mm", stress = "N/mm^2" }\n')
+    vtu = compare(good, CONVERGENCE / "L1.vtu", axisymmetric=True)
+    wrong = _recipe_with(tmp_path, '[compare]\nunits = { length = "m", stress = "Pa" }\n')
+    override = compare(wrong, CONVERGENCE / "L1.vtu", axisymmetric=True, units={"length": "mm", "stress": "N/mm^2"})
+    # the CSV keeps 10 significant digits of the stress (make_meshes.py): at most 5e-10 of each value apart
+    np.testing.assert_array_equal(override.sigma_zz_difference.values, vtu.sigma_zz_difference.values)
+    np.testing.assert_allclose(override.x.values, csv.x.values, rtol=1e-15)      # the CSV's 9 digits, 1 ulp
+    assert np.all(np.abs(vtu.sigma_zz_difference.values - csv.sigma_zz_difference.values)
+                  <= 5e-10 * np.abs(csv.sigma_zz_user.values))
+    assert not np.allclose(compare(wrong, CONVERGENCE / "L1.vtu", axisymmetric=True).x.values, csv.x.values)
+    rc = main(["compare", str(wrong), str(CONVERGENCE / "L1.vtu"), "--axisymmetric", "--no-plot",
+                    "--units", "length=mm,stress=N/mm^2", "-o", str(tmp_path / "r")])
+    assert rc == 0
+    with xr.open_dataset(tmp_path / "r" / "comparison.nc") as ds:
+        np.testing.assert_array_equal(ds.sigma_zz_difference.values, vtu.sigma_zz_difference.values)
+
+
+@pytest.mark.parametrize("table, words", [
+    ('units = { stress = "mm" }', "compare.units.stress = 'mm'"),
+    ('units = { pressure = "MPa" }', "unknown key 'compare.units.pressure'; allowed: length"),
+    ('unit = { stress = "MPa" }', "unknown key 'compare.unit'; allowed: units"),
+    ('units = "mm"', "compare.units must be a table"),
+])
+def test_bad_recipe_units_exit_2_before_any_work(tmp_path, capsys, table, words):
+    recipe = _recipe_with(tmp_path, "[compare]\n" + table + "\n")
+    rc = main(["compare", str(recipe), str(CONVERGENCE / "L1.csv"), "--axisymmetric", "-o", str(tmp_path / "r")])
+    err = capsys.readouterr().err.strip()
+    assert rc == 2 and len(err.splitlines()) == 1 and words in err, err
+    assert not (tmp_path / "r").exists()
+    from stressfields.recipe import RecipeError, load
+
+    with pytest.raises(RecipeError, match=words.replace("(", r"\(").replace(")", r"\)")):
+        load(recipe)          # `generate` refuses it the same way
+
+
+def test_keywords_are_checked_in_one_line():
+    recipe = {"scenario": "parabolic", "parameters": {"nu": 0.3}}
+    data = {"x": [0.5], "sigma_zz": [-1.0]}
+    for kw, words in [({"tolerance": float("nan")}, "positive finite"),
+                      ({"tolerance": {"median": 1}}, "--tolerance median"),
+                      ({"units": "length=kg"}, "--units length=kg"), ({"scale": "p2"}, "--scale p2"),
+                      ({"exclude_edge": -1.0}, "--exclude-edge -1"), ({"step": 2}, "only an Exodus II file")]:
+        with pytest.raises(CompareError, match=words) as info:
+            compare(recipe, data, **kw)
+        assert "\n" not in str(info.value)
+
+
+def test_an_exodus_history_gives_one_dataset_per_step_and_step_picks_one(tmp_path, example):
+    """Three time steps of the example's nodes, z up, in mm and MPa (Exodus carries no units): steps 1
+    and 3 are the CSV's values, so their differences are the example's; step 2 is 1.01 x them."""
+    from test_fe_validate import _exodus
+
+    header, table = read_csv(NODES)
+    values = table[:, 4:] * np.array([1.0, 1.0, 1.0, -1.0])
+    names = [h.split("[")[0] for h in header[4:]]
+    up = table[:, 1:4] * np.array([1.0, 1.0, -1.0])
+    exo = _exodus(tmp_path / "model.e", up, names, [values, values * 1.01, values])
+    every = compare(RECIPE, exo, z_up=True, units="length=mm,stress=MPa")
+    assert isinstance(every, list) and len(every) == 3
+    third = compare(RECIPE, exo, z_up=True, units={"length": "mm", "stress": "MPa"}, step=3)
+    for ds in (every[0], every[2], third):
+        for name in GEN.VARIABLES:
+            np.testing.assert_allclose(ds[f"{name}_difference"].values, example[f"{name}_difference"].values,
+                                       rtol=0, atol=1e-12 * GEN.hertz()[1])
+    np.testing.assert_allclose(every[1].sigma_zz_user.values, 1.01 * every[0].sigma_zz_user.values, rtol=1e-15)
+    with pytest.raises(CompareError, match="--step 4 is not a time step of the file: it has 3"):
+        compare(RECIPE, exo, z_up=True, units="length=mm,stress=MPa", step=4)

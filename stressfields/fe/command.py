@@ -34,7 +34,14 @@ def options_from(args) -> Options:
 
 def run(args) -> int:
     """The command: the report folder is checked before anything is computed and published whole
-    (`comparison.publish_report`)."""
+    (`comparison.publish_report`). On dask's threaded scheduler, without dask.distributed (`cli`)."""
+    from ..cli import _local_scheduler
+
+    with _local_scheduler("threads"):
+        return _run(args)
+
+
+def _run(args) -> int:
     from ..comparison import check_report_folder, publish_report
     from ..textfiles import write_text
     from ..writers import write

@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from ..pointfiles import _is_number
+from ..units import LABEL_RULE, parse_label
 
 #: a file of nodes is read whole: 1 GB holds ~1e7 nodes of a dozen columns
 MAX_NODE_FILE_BYTES = 1_000_000_000
@@ -77,9 +78,8 @@ def canonical(header: str) -> tuple[str, str | None]:
     """(canonical name, unit or None) of a header: ``X[mm]``, ``x(mm)``, ``Node Label``, ``S-S11``,
     ``sigma_thetatheta [MPa]``, ``sigma_zr``."""
     match = _HEADER.match(header)
-    raw = match.group("name") if match else header
     unit = match.group("unit") if match else None
-    written = re.sub(r"[\s\-.:/]+", "_", raw.strip()).strip("_")
+    written = written_name(header)
     name = written.lower()
     if name in ALIASES and ALIASES[name]:
         return ALIASES[name], unit or None
@@ -99,6 +99,14 @@ def canonical(header: str) -> tuple[str, str | None]:
             i, j = j, i
         return f"sigma_{i}{j}", unit or None
     return written, unit or None            # as written: a parameter such as R or E keeps its case
+
+
+def written_name(header: str) -> str:
+    """A header's name as written, without its unit (spaces, hyphens, dots as _): ``uz[um]`` -> ``uz``,
+    the name a scenario may declare where `canonical` says ``u_z``."""
+    match = _HEADER.match(header)
+    raw = match.group("name") if match else header
+    return re.sub(r"[\s\-.:/]+", "_", raw.strip()).strip("_")
 
 
 #: columns of an FE export that are not parameters: a [points] file may carry them, unused
@@ -232,6 +240,9 @@ def read_csv(path: Path) -> Table:
     if all(_is_number(h) for h in headers):
         raise FormatProblem("the first line holds numbers; it must name the columns (a header like x,y,z)")
     for k, h in enumerate(headers):
+        if parse_label(h.strip()) is None:      # not quoted: a file that is no CSV of nodes may hold anything
+            raise FormatProblem(f"column {k + 1} (from 1) of the header is not {LABEL_RULE}")
+    for k, h in enumerate(headers):
         col = frame.iloc[:, k]
         if col.dtype.kind not in "iuf":
             numbers = pd.to_numeric(col, errors="coerce")
@@ -258,15 +269,41 @@ def _is_exodus(path: Path) -> bool:
         raise FormatProblem("not a readable NetCDF file") from None
 
 
-def _plain_netcdf(path: Path) -> Table:
+def _plain_netcdf(path) -> Table:
+    """A NetCDF file of nodes along one dimension (units from ``units`` attributes), or the same as an
+    xr.Dataset in memory."""
     from ..comparison import CompareError, read_user_data
 
     try:
-        columns, _ = read_user_data(path)
+        columns, label = read_user_data(path)
     except CompareError as exc:         # its message names the file already: keep what follows
         raise FormatProblem(str(exc).split(": ", 1)[-1]) from None
-    return Table(str(path), _columns(((c.label + (f"[{c.unit}]" if c.unit else ""), c.values) for c in columns),
-                                     str(path)))
+    return _same_length(Table(label, _columns(((c.label + (f"[{c.unit}]" if c.unit else ""), c.values)
+                                               for c in columns), label)))
+
+
+def user_table(data) -> Table:
+    """An xr.Dataset along one dimension, or a mapping of header (``sigma_xx[MPa]``) -> values, as a
+    table (`sf.compare`'s user data in memory): a column without a unit is in the declared one."""
+    from collections.abc import Mapping
+
+    if not isinstance(data, Mapping) or hasattr(data, "data_vars"):
+        return _plain_netcdf(data)
+    pairs = []
+    for header, values in data.items():
+        arr = np.asarray(values)
+        if arr.ndim != 1 or arr.dtype.kind not in "iuf":
+            raise FormatProblem(f"column {str(header).strip()!r}: must be one column of numbers")
+        pairs.append((header, arr))
+    return _same_length(Table("the user data", _columns(pairs, "the user data")))
+
+
+def _same_length(table: Table) -> Table:
+    lengths = {c.label: c.values.size for c in table.columns}
+    if len(set(lengths.values())) != 1 or not table.columns[0].values.size:
+        raise FormatProblem("the columns must have one length of at least 1; "
+                            + ", ".join(f"{k} has {n}" for k, n in lengths.items()))
+    return table
 
 
 def _names(ds, var: str) -> list[str]:

@@ -34,10 +34,6 @@ EDGES = {
 }
 
 
-def percent(values: np.ndarray, q: float) -> float:
-    return float(np.percentile(values, q)) if values.size else math.nan
-
-
 def statistics(diff: np.ndarray, ref: np.ndarray, scale: np.ndarray, weights: np.ndarray | None,
                mask: np.ndarray) -> dict:
     """The statistics of the nodes in ``mask`` where the reference is finite (the others counted)."""
@@ -50,19 +46,25 @@ def statistics(diff: np.ndarray, ref: np.ndarray, scale: np.ndarray, weights: np
     worst = int(np.argmax(ratio))
     d, r, s = diff[ok], ref[ok], scale[ok]
     a = np.abs(d) / s
-    norm = float(np.linalg.norm(r))
+    norm = _norm(r)
     out.update({
         "scale": float(scale[worst]), "max_abs_difference_over_scale": float(ratio[worst]),
         "max_abs_difference": float(abs(diff[worst])), "worst_point": worst,
         "rms_difference": float(np.sqrt(np.mean(d * d))), "rms_difference_over_scale": float(np.sqrt(np.mean(a * a))),
-        "p50_abs_difference_over_scale": percent(a, 50), "p95_abs_difference_over_scale": percent(a, 95),
-        "p99_abs_difference_over_scale": percent(a, 99),
-        "relative_l2": _ratio(float(np.linalg.norm(d)), norm)})
+        **dict(zip(("p50_abs_difference_over_scale", "p95_abs_difference_over_scale",
+                    "p99_abs_difference_over_scale"), np.percentile(a, (50, 95, 99)).tolist())),    # one sort
+        "relative_l2": _ratio(_norm(d), norm)})
     if weights is not None:
         w = weights[ok]
         out["weighted_relative_l2"] = _ratio(math.sqrt(float(np.sum(w * d * d))), math.sqrt(float(np.sum(w * r * r))))
         out["weighted_rms_difference_over_scale"] = math.sqrt(float(np.sum(w * a * a) / np.sum(w)))
     return out
+
+
+def _norm(x: np.ndarray) -> float:
+    """The Euclidean norm by NumPy's pairwise sum, not BLAS: np.linalg.norm's dot of 1e5 values took
+    7.6 ms here against 0.03 ms (OpenBLAS threads on a busy 2-core machine), 20 of them per comparison."""
+    return math.sqrt(float(np.sum(x * x)))
 
 
 def _ratio(num: float, den: float) -> float:
@@ -72,8 +74,8 @@ def _ratio(num: float, den: float) -> float:
 def sign_hint(user: np.ndarray, ref: np.ndarray) -> str | None:
     """A note when the user's values are close to minus the reference (a sign convention)."""
     ok = np.isfinite(ref)
-    minus, plus = np.linalg.norm(user[ok] + ref[ok]), np.linalg.norm(user[ok] - ref[ok])
-    if ok.any() and np.linalg.norm(ref[ok]) > 0 and minus < 0.1 * plus:
+    minus, plus = _norm(user[ok] + ref[ok]), _norm(user[ok] - ref[ok])
+    if ok.any() and _norm(ref[ok]) > 0 and minus < 0.1 * plus:
         return ("user ≈ -reference: this looks like a sign-convention difference (tension positive, z into "
                 "the body here; --z-up changes the sign of z, sigma_xz, sigma_yz, u_z)")
     return None

@@ -42,3 +42,28 @@ def unit_from_option(name: str, target: str, units: dict[str, str]) -> str | Non
     if target == "Pa/m" and "stress" in units and "length" in units:
         return f"({units['stress']})/({units['length']})"
     return None
+
+
+#: keys of a recipe's ``[compare]`` table
+COMPARE_KEYS = ("units",)
+
+
+def compare_table_problem(table) -> str | None:
+    """What is wrong with a recipe's ``[compare]`` table (None: nothing): ``units`` is a table of
+    `UNIT_KEYS` -> a unit of that dimension, as `--units` takes them."""
+    if not isinstance(table, dict):
+        return "[compare] must be a table, e.g. [compare] units = { length = \"mm\", stress = \"MPa\" }"
+    for key in table:
+        if key not in COMPARE_KEYS:
+            return f"unknown key 'compare.{key}'; allowed: {', '.join(COMPARE_KEYS)}"
+    units = table.get("units", {})
+    if not isinstance(units, dict) or not all(isinstance(k, str) and isinstance(v, str) for k, v in units.items()):
+        return "compare.units must be a table of unit names, e.g. { length = \"mm\", stress = \"MPa\" }"
+    for key, value in units.items():
+        if key not in UNIT_KEYS:
+            return f"unknown key 'compare.units.{key}'; allowed: {', '.join(UNIT_KEYS)}"
+        try:
+            factor(value, UNIT_KEYS[key], key)
+        except UnitProblem as exc:
+            return f"compare.units.{key} = {value!r}: " + str(exc).split(": ", 1)[1]
+    return None

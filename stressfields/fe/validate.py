@@ -8,7 +8,8 @@ convergence when several files are given.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import xarray as xr
@@ -17,11 +18,11 @@ from ..comparison import Column as RefColumn
 from ..comparison import CompareError, _derived_recipe, _recipe, _reference, _scale_spec, _scale_value
 from ..recipe import POINT
 from . import stats as st
-from .formats import FormatProblem, Table, read_nodes
+from .formats import FormatProblem, Table, read_nodes, user_table, written_name
 from .frames import BODY2_FLIP, CYLINDRICAL, NEEDS, Frame, FrameProblem, rotate_reference, to_depth_frame
 from .. import cf
 from ..errors import name_problem
-from .units import UnitProblem, factor, unit_from_option
+from .units import UnitProblem, compare_table_problem, factor, parse_unit_option, unit_from_option
 
 #: `--scale` choices: user stresses divided by one of these
 SCALES = ("p0", "p_m")
@@ -77,8 +78,20 @@ def compare_files(recipe, files, options: Options) -> list[xr.Dataset]:
     if options.scale is not None and options.scale not in SCALES:
         raise CompareError(f"--scale {options.scale}: one of {', '.join(SCALES)}")
     base, data = _recipe(recipe)
+    if not options.units:
+        options = replace(options, units=_recipe_units(data, base.label))
     tables = []
     for path in files:
+        if isinstance(path, (Mapping, xr.Dataset)):         # sf.compare's data in memory
+            try:
+                got = [user_table(path)]
+            except FormatProblem as exc:
+                raise CompareError(f"{'the user dataset' if isinstance(path, xr.Dataset) else 'the user data'}: "
+                                   f"{exc}") from None
+            if options.step is not None:
+                raise CompareError(f"step {options.step}: only an Exodus II file has time steps")
+            tables += got
+            continue
         why = name_problem(str(path))
         if why is not None:          # said with ascii(): the name itself may not print
             raise CompareError(f"{ascii(str(path))}: cannot read it ({why})")
@@ -102,6 +115,19 @@ def compare_files(recipe, files, options: Options) -> list[xr.Dataset]:
     return [_compare_one(base, data, plan, options) for plan in plans]
 
 
+def _recipe_units(data: dict, label: str) -> dict[str, str]:
+    """The recipe's ``[compare] units = { length = "mm", stress = "MPa" }``: the units of a format that
+    carries none when ``--units`` gives none (checked as --units is; `recipe` checks it the same way)."""
+    table = data.get("compare")
+    if table is None:
+        return {}
+    problem = compare_table_problem(table)
+    if problem:
+        raise CompareError(f"{label}: {problem}")
+    units = table.get("units") or {}
+    return parse_unit_option(",".join(f"{k}={v}" for k, v in units.items()))
+
+
 @dataclass
 class _Plan:
     table: Table
@@ -110,6 +136,7 @@ class _Plan:
     values: list
     factors: dict
     cartesian: list[str]
+    units: dict             # the unit each coordinate is given in ("": none), for the worst point's place
 
 
 def _plan(base, table: Table, frame: Frame, options: Options) -> _Plan:
@@ -118,6 +145,9 @@ def _plan(base, table: Table, frame: Frame, options: Options) -> _Plan:
     fields = {v.name: v for v in scen.variables_in(physical) if v.dtype.startswith("float") and not v.flag_values}
     values = []
     for c in frame.values:
+        written = written_name(c.label)
+        if c.name not in fields and written in fields and not frame.cylindrical:
+            c = replace(c, name=written)        # a scenario's own name (the wavy field's uz, not u_z)
         if options.variables and c.name not in options.variables:
             continue            # a column not asked for is not checked (an FE file holds many)
         cart = CYLINDRICAL.get(c.name, c.name) if frame.cylindrical else c.name
@@ -169,7 +199,7 @@ def _plan(base, table: Table, frame: Frame, options: Options) -> _Plan:
         if loaded:
             raise CompareError(f"--axisymmetric: the recipe gives a tangential load ({', '.join(loaded)}): its field "
                                "is not axisymmetric; compare a 3-D model")
-    factors = {}
+    factors, shown = {}, {}
     for col in [*coords, *values]:
         name = CYLINDRICAL.get(col.name, col.name) if frame.cylindrical else col.name
         decl = params[name] if name in params else fields[name]
@@ -189,10 +219,13 @@ def _plan(base, table: Table, frame: Frame, options: Options) -> _Plan:
         try:
             factors[col.name] = factor(unit, target, col.label)
         except UnitProblem as exc:
-            raise CompareError(f"{source}: {exc}") from None
+            mode = "" if physical else (" (the recipe is in normalised mode ('1'): values divided by the scale, "
+                                        "without a unit)")
+            raise CompareError(f"{source}: {exc}{mode}") from None
+        shown[col.name] = "" if (unit or target) == "1" else (unit or target)
     needed = list(dict.fromkeys(n for c in values for n in
                                 (NEEDS.get(c.name, (c.name,)) if frame.cylindrical else (c.name,))))
-    return _Plan(table, frame, coords, values, factors, needed)
+    return _Plan(table, frame, coords, values, factors, needed, shown)
 
 
 def _recipe_data(base) -> dict:
@@ -323,8 +356,9 @@ def _compare_one(base, data: dict, plan: _Plan, options: Options) -> xr.Dataset:
         s["scale_definition"] = definition
         s["label"] = col.label
         if s["worst_point"] >= 0:
-            s["worst_coordinates"] = ", ".join(f"{c} = {float(user_xy[c][s['worst_point']]) / plan.factors[c]:.6g}"
-                                               for c in user_xy)
+            s["worst_coordinates"] = ", ".join(
+                f"{c} = {float(user_xy[c][s['worst_point']]) / plan.factors[c]:.6g}"
+                + (f" {plan.units[c]}" if plan.units.get(c) else "") for c in user_xy)
             if frame.node is not None:
                 s["worst_node"] = int(frame.node.values[s["worst_point"]])
         if ring is not None:
