@@ -6,6 +6,8 @@ import sys
 import time
 from pathlib import Path
 
+import pytest
+
 DATA = Path(__file__).resolve().parent / "data"
 
 
@@ -30,3 +32,18 @@ def kill_after_two_parts(recipe: Path, target: Path, timeout: float) -> dict:
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
     return json.loads(manifest.read_text())
+
+
+@pytest.fixture(autouse=True)
+def _mpmath_precision_restored():
+    """mpmath's working precision is global: a test that lowers it for a quick reference must not
+    leave it lowered for the next test in the same process (references computed at 50 digits
+    silently fell to 15)."""
+    try:
+        import mpmath
+    except ImportError:
+        yield
+        return
+    dps = mpmath.mp.dps
+    yield
+    mpmath.mp.dps = dps
