@@ -1,0 +1,152 @@
+"""The Cattaneo–Mindlin tangential stresses and dp/dz keep their relative accuracy as fx -> 0.
+
+As c -> a the tangential field is the difference of two terms at a and at c; the kernels take the
+annulus width a - c from the slip ratio (``profiles.annulus_width``) and, below the surface, the
+superposition of sliding punches over a thin annulus (docs/theory/axisymmetric.md (A109),
+docs/theory/interior.md (I58)).  References, with c = a (1 - fx)^(1/3) exact:
+
+* on the surface, the paraboloid's closed forms (docs/theory/axisymmetric.md (A34), paper eqs. (14),
+  (21)) written out below in 40-digit mpmath;
+* below it, the superposition (2 mu / R) int_c^a K(p/t) t^k dt of the unit sliding punch (stresses
+  k = 0, dp/dz k = -1) by mpmath's tanh-sinh quadrature in 40 digits over t (the punch kernel in
+  doubles, its r/t - 1 formed in 40 digits), split at the ring point nearest to p — another rule
+  and another switch than the code's (8-point Gauss far, graded panels near).
+"""
+import importlib
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from stressfields.physics.axisymmetric import profiles as P
+from stressfields.physics.axisymmetric.interior_hertz import sliding_punch_unit
+from stressfields.physics.axisymmetric.interior_tangential import (interior_dpdz_tangential,
+                                                                   interior_stress_tangential,
+                                                                   sliding_punch_dpdz_unit)
+from stressfields.physics.axisymmetric.tangential import dpdz_closed
+
+# the package re-exports a function named ``fields``: the module itself
+F = importlib.import_module("stressfields.physics.axisymmetric.fields")
+
+R, A, MU = 1.0, 0.5, 0.3
+PROFILE = P.paraboloid(R)
+KEYS = ("xx", "yy", "zz", "xy", "xz", "yz")
+
+
+def load(fx, nu):
+    """(ux0, c, w, c exact in mpmath) as the scenarios form them from fx."""
+    with mp.workdps(40):
+        c_exact = mp.mpf(A) * mp.cbrt(1 - mp.mpf(fx))
+    ux0 = P.displacement_ratio(P.slip_ratio(PROFILE, A, fx), nu, MU)
+    c = P.stick_radius_of_force(PROFILE, A, 1.0 - fx)
+    w = P.annulus_width(PROFILE, A, c, ux0, nu, MU)
+    return float(ux0), float(c), float(w), c_exact
+
+
+def points(c_exact, w):
+    """Stick zone, the middle of the thin slip annulus (from the outer edge), outside the contact."""
+    return [(0.3 * A, 0.2 * A), (A - 0.5 * w, 0.0), (0.6 * A * math.cos(0.3), 0.6 * A * math.sin(0.3)),
+            (1.4 * A, 0.5 * A)]
+
+
+def surface_reference(x, y, nu, c):
+    """sigma_xz / E* and the tangential dp/dz / E* on the surface, 40 digits."""
+    with mp.workdps(40):
+        x, y, nu, a = mp.mpf(x), mp.mpf(y), mp.mpf(nu), mp.mpf(A)
+        r = mp.hypot(x, y)
+        P0 = 2 / (mp.pi * R)
+        k = 2 * (2 * (1 + nu) / 3) * MU / (mp.pi * R)
+        if r >= a:
+            return mp.mpf(0), mp.mpf(0)
+        sa = mp.sqrt(a * a - r * r)
+        if r < c:
+            sc = mp.sqrt(c * c - r * r)
+            return -MU * P0 * (sa - sc), -k * x * (1 / sa - 1 / sc)
+        return -MU * P0 * sa, -k * x / sa
+
+
+def interior_reference(x, y, z, nu, c, dpdz=False):
+    """(2 mu / R) int_c^a K(p/t) t^k dt by tanh-sinh in 40 digits."""
+    with mp.workdps(40):
+        a = mp.mpf(A)
+        r = mp.hypot(x, y)
+        cut = [c, min(max(r, c), a), a] if c < r < a else [c, a]
+
+        def term(t, key):
+            rm1 = float(r / t - 1)
+            tf = float(t)
+            if dpdz:
+                return mp.mpf(float(sliding_punch_dpdz_unit(x / tf, y / tf, z / tf, nu, rm1=rm1))) / t
+            return mp.mpf(float(sliding_punch_unit(x / tf, y / tf, z / tf, nu, rm1=rm1)[key]))
+
+        keys = ("dpdz",) if dpdz else KEYS
+        return {k: float(2 * MU / R * mp.quad(lambda t: term(t, k), cut)) for k in keys}
+
+
+@pytest.mark.parametrize("fx", [1e-6, 1e-9, 1e-12])
+@pytest.mark.parametrize("nu", [0.0, 0.3, 0.5])
+def test_surface_shear_and_dpdz_keep_relative_accuracy(fx, nu):
+    ux0, c, w, c_exact = load(fx, nu)
+    for x, y in points(c_exact, w):
+        out, _ = F.fields(["sigma_xz"], PROFILE, x, y, a=A, nu=nu, mu=MU, ux0=ux0, stick=c, method="closed")
+        ref_xz, ref_dp = surface_reference(x, y, nu, c_exact)
+        got_xz = float(out["sigma_xz"])
+        assert abs(got_xz - float(ref_xz)) <= 1e-12 * abs(float(ref_xz)) + 1e-300, (fx, nu, x, y, got_xz, ref_xz)
+        total = float(F.surface_dpdz(x, y, A, c, nu, MU, PROFILE, width=w))
+        normal = float(F.surface_dpdz(x, y, A, c, nu, 0.0, PROFILE))
+        # the tangential part alone from the kernel (the normal part is O(1) against O(fx))
+        r = math.hypot(x, y)
+        got_dp = float(dpdz_closed(PROFILE.closed, np.array([x]), np.array([r]), np.array([A]), np.array([c]),
+                                   np.array([nu]), np.array([MU]), np.array([w]))[0])
+        assert abs(got_dp - float(ref_dp)) <= 1e-12 * abs(float(ref_dp)) + 1e-300, (fx, nu, x, y, got_dp, ref_dp)
+        assert abs((total - normal) - got_dp) <= 1e-15 * abs(normal) + 1e-12 * abs(got_dp)
+
+
+@pytest.mark.parametrize("fx", [1e-6, 1e-9, 1e-12])
+@pytest.mark.parametrize("z", [1e-9, 0.1, 1.0])
+def test_interior_tangential_keeps_relative_accuracy(fx, z):
+    nu = [0.0, 0.3, 0.5][int(round(-math.log10(fx) / 3)) % 3]   # every nu over the fx
+    ux0, c, w, c_exact = load(fx, nu)
+    for x, y in points(c_exact, w)[:3] + [(1.4 * A, 0.5 * A)]:
+        got = interior_stress_tangential(x, y, z * A, A, c, nu, MU, PROFILE, width=w)
+        ref = interior_reference(x, y, z * A, nu, c_exact)
+        scale = max(abs(v) for v in ref.values())
+        for k in KEYS:
+            assert abs(float(got[k]) - ref[k]) <= 1e-12 * scale, (fx, z, x, y, k, float(got[k]), ref[k])
+        got_dp = float(interior_dpdz_tangential(x, y, z * A, A, c, nu, MU, PROFILE, width=w))
+        ref_dp = interior_reference(x, y, z * A, nu, c_exact, dpdz=True)["dpdz"]
+        assert abs(got_dp - ref_dp) <= 1e-12 * abs(ref_dp), (fx, z, x, y, got_dp, ref_dp)
+
+
+def test_fields_below_the_surface_take_the_exact_width():
+    """The product's own route (fields with depth) gives the superposition's values."""
+    fx, nu, z = 1e-9, 0.3, 1e-9
+    ux0, c, w, c_exact = load(fx, nu)
+    x, y = 0.3 * A, 0.2 * A
+    out, _ = F.fields(["sigma_xz"], PROFILE, x, y, z * A, a=A, nu=nu, mu=MU, ux0=ux0, stick=c, method="closed")
+    normal, _ = F.fields(["sigma_xz"], PROFILE, x, y, z * A, a=A, nu=nu, mu=0.0, ux0=0.0, method="closed")
+    ref = interior_reference(x, y, z * A, nu, c_exact)["xz"]
+    tangential = float(out["sigma_xz"]) - float(normal["sigma_xz"])
+    assert abs(tangential - ref) <= 1e-12 * abs(ref) + 1e-15 * abs(float(normal["sigma_xz"]))
+
+
+def test_continuous_across_the_thin_annulus_switch():
+    """Just below and just above the slip ratio 1e-3 where the superposition takes over from the
+    difference of the two Hertz fields: both routes within 1e-12 of the reference, so no jump."""
+    nu = 0.3
+    for slip in (1e-3 * (1 - 1e-9), 1e-3 * (1 + 1e-9)):
+        w = A * slip / (1 + math.sqrt(1 - slip))
+        c = A - w
+        with mp.workdps(40):
+            c_exact = mp.mpf(A) - mp.mpf(w)
+        # (next to the ring at depths below ~1e-4 a the difference route itself errs by more)
+        for x, y, z in [(0.3 * A, 0.2 * A, 1e-3), (A - 0.5 * w, 0.0, 1e-2), (1.2 * A, 0.1, 0.1)]:
+            got = interior_stress_tangential(x, y, z, A, c, nu, MU, PROFILE, width=w)
+            ref = interior_reference(x, y, z, nu, c_exact)
+            scale = max(abs(v) for v in ref.values())
+            for k in KEYS:
+                assert abs(float(got[k]) - ref[k]) <= 1e-12 * scale, (slip, x, z, k)
+            got_dp = float(interior_dpdz_tangential(x, y, z, A, c, nu, MU, PROFILE, width=w))
+            ref_dp = interior_reference(x, y, z, nu, c_exact, dpdz=True)["dpdz"]
+            assert abs(got_dp - ref_dp) <= 1e-12 * abs(ref_dp), (slip, x, z)
