@@ -3,7 +3,7 @@
 As c -> a the tangential field is the difference of two terms at a and at c; the kernels take the
 annulus width a - c from the slip ratio (``profiles.annulus_width``) and, below the surface, the
 superposition of sliding punches over a thin annulus (docs/theory/axisymmetric.md (A109),
-docs/theory/interior.md (I58)).  References, with c = a (1 - fx)^(1/3) exact:
+docs/theory/interior.md (I59)).  References, with c = a (1 - fx)^(1/3) exact:
 
 * on the surface, the paraboloid's closed forms (docs/theory/axisymmetric.md (A34), paper eqs. (14),
   (21)) written out below in 40-digit mpmath;

@@ -123,7 +123,7 @@ _THIN = 1e-3
 def _thin_paraboloid(out, x, y, z, a, c, w, nu, mu, R, unit, power):
     """Replace in ``out`` the values at z > 0 where the slip annulus is thin (1 - (c/a)^2 < ``_THIN``)
     by the superposition (2 mu / R) int_c^a t^power unit(p/t) dt of sliding punches, (I45) for the
-    paraboloid (docs/theory/interior.md (I58)): the stresses with ``sliding_punch_unit`` and
+    paraboloid (docs/theory/interior.md (I59)): the stresses with ``sliding_punch_unit`` and
     power 0, dp/dz with ``sliding_punch_dpdz_unit`` and power -1.  The width w comes from the slip
     ratio, so the result keeps its relative accuracy as c -> a."""
     i = np.flatnonzero((c > 0.0) & (z > 0.0) & (w * (2.0 * a - w) < _THIN * a * a))
