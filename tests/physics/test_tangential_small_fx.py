@@ -8,8 +8,8 @@ docs/theory/interior.md (I59)).  References, with c = a (1 - fx)^(1/3) exact:
 * on the surface, the paraboloid's closed forms (docs/theory/axisymmetric.md (A34), paper eqs. (14),
   (21)) written out below in 40-digit mpmath;
 * below it, the superposition (2 mu / R) int_c^a K(p/t) t^k dt of the unit sliding punch (stresses
-  k = 0, dp/dz k = -1) by mpmath's tanh-sinh quadrature in 40 digits over t (the punch kernel in
-  doubles, its r/t - 1 formed in 40 digits), split at the ring point nearest to p — another rule
+  k = 0, dp/dz k = -1) by mpmath's tanh-sinh quadrature in the offset a - t (its range a - c from the 40-digit c;
+  the punch kernel in doubles, its r/t - 1 formed in extended precision), split at the ring point nearest to p — another rule
   and another switch than the code's (8-point Gauss far, graded panels near).
 """
 import importlib
@@ -67,21 +67,28 @@ def surface_reference(x, y, nu, c):
 
 
 def interior_reference(x, y, z, nu, c, dpdz=False):
-    """(2 mu / R) int_c^a K(p/t) t^k dt by tanh-sinh in 40 digits."""
+    """(2 mu / R) int_c^a K(p/t) t^k dt by tanh-sinh, split at the ring point nearest to p.  The
+    kernel is a double, so the rule runs at 20 digits (far below the kernel's rounding) in the
+    offset s = a - t, whose range a - c is taken from the 40-digit c.  One kernel call per node serves all components."""
     with mp.workdps(40):
-        a = mp.mpf(A)
-        r = mp.hypot(x, y)
-        cut = [c, min(max(r, c), a), a] if c < r < a else [c, a]
+        width = mp.mpf(A) - c                     # the annulus' width, in offsets s = a - t from a
+        gap = mp.mpf(A) - mp.hypot(x, y)          # a - r
+    with mp.workdps(20):
+        cut = [0, gap, width] if 0 < gap < width else [0, width]
+        memo = {}
 
-        def term(t, key):
-            rm1 = float(r / t - 1)
-            tf = float(t)
-            if dpdz:
-                return mp.mpf(float(sliding_punch_dpdz_unit(x / tf, y / tf, z / tf, nu, rm1=rm1))) / t
-            return mp.mpf(float(sliding_punch_unit(x / tf, y / tf, z / tf, nu, rm1=rm1)[key]))
+        def kernel(s):
+            if s not in memo:
+                t = mp.mpf(A) - s
+                rm1, tf = float((s - gap) / t), float(t)        # r/t - 1 = (s - (a - r))/t
+                if dpdz:
+                    memo[s] = {"dpdz": float(sliding_punch_dpdz_unit(x / tf, y / tf, z / tf, nu, rm1=rm1)) / tf}
+                else:
+                    memo[s] = {k: float(v) for k, v in sliding_punch_unit(x / tf, y / tf, z / tf, nu, rm1=rm1).items()}
+            return memo[s]
 
         keys = ("dpdz",) if dpdz else KEYS
-        return {k: float(2 * MU / R * mp.quad(lambda t: term(t, k), cut)) for k in keys}
+        return {k: float(2 * MU / R * mp.quad(lambda s: kernel(s)[k], cut)) for k in keys}
 
 
 @pytest.mark.parametrize("fx", [1e-6, 1e-9, 1e-12])
