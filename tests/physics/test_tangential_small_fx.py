@@ -5,8 +5,8 @@ annulus width a - c from the slip ratio (``profiles.annulus_width``) and, below 
 superposition of sliding punches over a thin annulus (docs/theory/axisymmetric.md (A109),
 docs/theory/interior.md (I59)).  References, with c = a (1 - fx)^(1/3) exact:
 
-* on the surface, the paraboloid's closed forms (docs/theory/axisymmetric.md (A34), paper eqs. (14),
-  (21)) written out below in 40-digit mpmath;
+* on the surface, for the paraboloid and the cone, the defining integrals (A34), (A39)-(A41) by
+  tanh-sinh and the closed dp/dz (A56)-(A58), in 40-digit mpmath;
 * below it, the superposition (2 mu / R) int_c^a K(p/t) t^k dt of the unit sliding punch (stresses
   k = 0, dp/dz k = -1) by mpmath's tanh-sinh quadrature in the offset a - t (its range a - c from the 40-digit c;
   the punch kernel in doubles, its r/t - 1 formed in extended precision), split at the ring point nearest to p — another rule
@@ -24,46 +24,70 @@ from stressfields.physics.axisymmetric.interior_hertz import sliding_punch_unit
 from stressfields.physics.axisymmetric.interior_tangential import (interior_dpdz_tangential,
                                                                    interior_stress_tangential,
                                                                    sliding_punch_dpdz_unit)
-from stressfields.physics.axisymmetric.tangential import dpdz_closed
+from stressfields.physics.axisymmetric.tangential import dpdz_closed, inplane_closed
 
 # the package re-exports a function named ``fields``: the module itself
 F = importlib.import_module("stressfields.physics.axisymmetric.fields")
 
 R, A, MU = 1.0, 0.5, 0.3
 PROFILE = P.paraboloid(R)
+PROFILES = {"paraboloid": PROFILE, "cone": P.cone(0.2)}
 KEYS = ("xx", "yy", "zz", "xy", "xz", "yz")
 
 
-def load(fx, nu):
-    """(ux0, c, w, c exact in mpmath) as the scenarios form them from fx."""
+def load(fx, nu, profile=PROFILE):
+    """(ux0, c, w, c exact in mpmath) as the scenarios form them from fx: F_N ~ a^3 (paraboloid) or
+    a^2 (cone), so c = a (1 - fx)^(1/3) or a (1 - fx)^(1/2) (A107)."""
+    n = 2 if profile.closed[0] == "paraboloid" else 1
     with mp.workdps(40):
-        c_exact = mp.mpf(A) * mp.cbrt(1 - mp.mpf(fx))
-    ux0 = P.displacement_ratio(P.slip_ratio(PROFILE, A, fx), nu, MU)
-    c = P.stick_radius_of_force(PROFILE, A, 1.0 - fx)
-    w = P.annulus_width(PROFILE, A, c, ux0, nu, MU)
+        c_exact = mp.mpf(A) * (1 - mp.mpf(fx)) ** (mp.mpf(1) / (n + 1))
+    ux0 = P.displacement_ratio(P.slip_ratio(profile, A, fx), nu, MU)
+    c = P.stick_radius_of_force(profile, A, 1.0 - fx)
+    w = P.annulus_width(profile, A, c, ux0, nu, MU)
     return float(ux0), float(c), float(w), c_exact
 
 
-def points(c_exact, w):
-    """Stick zone, the middle of the thin slip annulus (from the outer edge), outside the contact."""
+def points(w):
+    """Stick zone (off and on the axis y = 0), the middle of the thin slip annulus (from the outer
+    edge, on y = 0 so that r - a is exact), outside the contact."""
     return [(0.3 * A, 0.2 * A), (A - 0.5 * w, 0.0), (0.6 * A * math.cos(0.3), 0.6 * A * math.sin(0.3)),
             (1.4 * A, 0.5 * A)]
 
 
-def surface_reference(x, y, nu, c):
-    """sigma_xz / E* and the tangential dp/dz / E* on the surface, 40 digits."""
+def surface_reference(profile, x, y, nu, c):
+    """Tangential sigma_xz, sigma_xx, sigma_yy, sigma_xy and dp/dz / E* on the surface, 40 digits:
+    (A34) and (A39)-(A41) by tanh-sinh over u = r cosh t, r sin t (g' = 2u/R or pi tan(theta)/2), dp/dz (A56)-(A58)."""
     with mp.workdps(40):
-        x, y, nu, a = mp.mpf(x), mp.mpf(y), mp.mpf(nu), mp.mpf(A)
+        x, y, nu, a, c = mp.mpf(x), mp.mpf(y), mp.mpf(nu), mp.mpf(A), mp.mpf(c)
         r = mp.hypot(x, y)
-        P0 = 2 / (mp.pi * R)
-        k = 2 * (2 * (1 + nu) / 3) * MU / (mp.pi * R)
+        cone = profile.closed[0] == "cone"
+        k1 = mp.mpf(profile.closed[1])
+
+        def dg(u):
+            return mp.pi * k1 / 2 if cone else 2 * u / k1
+
+        # u = r cosh(t) and u = r sin(t) take the square roots out of the integrands
+        xz = -MU / mp.pi * mp.quad(lambda t: dg(r * mp.cosh(t)), [mp.acosh(max(r, c) / r), mp.acosh(a / r)]) \
+            if r < a else 0
+        lo, hi = mp.asin(min(r, c) / r), mp.asin(min(r, a) / r)
+        ints = [mp.quad(lambda t: h(r * mp.sin(t)) * r * mp.sin(t) * dg(r * mp.sin(t)), [lo, hi]) if lo < hi else 0
+                for h in (lambda u: (1 + nu) * r ** 4 - nu * (u * u * r * r + y * y * (3 * r * r - 4 * u * u)),
+                          lambda u: u * u * r * r + y * y * (3 * r * r - 4 * u * u),
+                          lambda u: (1 - 2 * nu) * r ** 4 + 2 * nu * (u * u * r * r + x * x * (3 * r * r - 4 * u * u)))]
+        xx = -2 * MU * x / (mp.pi * r ** 6) * ints[0]
+        yy = -2 * nu * MU * x / (mp.pi * r ** 6) * ints[1]
+        xy = -MU * y / (mp.pi * r ** 6) * ints[2]
+        C2 = 2 * (1 + nu) / 3
         if r >= a:
-            return mp.mpf(0), mp.mpf(0)
-        sa = mp.sqrt(a * a - r * r)
-        if r < c:
-            sc = mp.sqrt(c * c - r * r)
-            return -MU * P0 * (sa - sc), -k * x * (1 / sa - 1 / sc)
-        return -MU * P0 * sa, -k * x / sa
+            dp = 0
+        elif cone:
+            p0 = k1 / 2
+            inner = c / mp.sqrt(c * c - r * r) if r < c else 0
+            dp = -C2 * MU * p0 * (x / r ** 2) * (a / mp.sqrt(a * a - r * r) - inner)
+        else:
+            inner = 1 / mp.sqrt(c * c - r * r) if r < c else 0
+            dp = -2 * C2 * MU / (mp.pi * k1) * x * (1 / mp.sqrt(a * a - r * r) - inner)
+        return {k: float(v) for k, v in dict(xz=xz, xx=xx, yy=yy, xy=xy, dpdz=dp).items()}
 
 
 def interior_reference(x, y, z, nu, c, dpdz=False):
@@ -91,23 +115,29 @@ def interior_reference(x, y, z, nu, c, dpdz=False):
         return {k: float(2 * MU / R * mp.quad(lambda s: kernel(s)[k], cut)) for k in keys}
 
 
+@pytest.mark.parametrize("name", ["paraboloid", "cone"])
 @pytest.mark.parametrize("fx", [1e-6, 1e-9, 1e-12])
 @pytest.mark.parametrize("nu", [0.0, 0.3, 0.5])
-def test_surface_shear_and_dpdz_keep_relative_accuracy(fx, nu):
-    ux0, c, w, c_exact = load(fx, nu)
-    for x, y in points(c_exact, w):
-        out, _ = F.fields(["sigma_xz"], PROFILE, x, y, a=A, nu=nu, mu=MU, ux0=ux0, stick=c, method="closed")
-        ref_xz, ref_dp = surface_reference(x, y, nu, c_exact)
-        got_xz = float(out["sigma_xz"])
-        assert abs(got_xz - float(ref_xz)) <= 1e-12 * abs(float(ref_xz)) + 1e-300, (fx, nu, x, y, got_xz, ref_xz)
-        total = float(F.surface_dpdz(x, y, A, c, nu, MU, PROFILE, width=w))
-        normal = float(F.surface_dpdz(x, y, A, c, nu, 0.0, PROFILE))
-        # the tangential part alone from the kernel (the normal part is O(1) against O(fx))
-        r = math.hypot(x, y)
-        got_dp = float(dpdz_closed(PROFILE.closed, np.array([x]), np.array([r]), np.array([A]), np.array([c]),
-                                   np.array([nu]), np.array([MU]), np.array([w]))[0])
-        assert abs(got_dp - float(ref_dp)) <= 1e-12 * abs(float(ref_dp)) + 1e-300, (fx, nu, x, y, got_dp, ref_dp)
-        assert abs((total - normal) - got_dp) <= 1e-15 * abs(normal) + 1e-12 * abs(got_dp)
+def test_surface_tangential_part_keeps_relative_accuracy(name, fx, nu):
+    profile = PROFILES[name]
+    ux0, c, w, c_exact = load(fx, nu, profile)
+    for x, y in points(w):
+        ref = surface_reference(profile, x, y, nu, c_exact)
+        # sigma_xz through the product's own route (it has no normal part)
+        out, _ = F.fields(["sigma_xz"], profile, x, y, a=A, nu=nu, mu=MU, ux0=ux0, stick=c, method="closed")
+        got = {"xz": float(out["sigma_xz"])}
+        # the tangential in-plane part and dp/dz from their kernels (the normal parts are O(1) against O(fx))
+        args = [np.array([v]) for v in (x, y, math.hypot(x, y), A, c, nu, MU)]
+        got.update(zip(("xx", "yy", "xy"), (float(v[0]) for v in inplane_closed(profile.closed, *args, np.array([w])))))
+        got["dpdz"] = float(dpdz_closed(profile.closed, *args[:1], *args[2:], np.array([w]))[0])
+        scale = max(abs(ref[k]) for k in ("xz", "xx", "yy", "xy"))
+        for k in ("xz", "xx", "yy", "xy"):
+            assert abs(got[k] - ref[k]) <= 1e-12 * scale, (name, fx, nu, x, y, k, got[k], ref[k])
+        assert abs(got["dpdz"] - ref["dpdz"]) <= 1e-12 * abs(ref["dpdz"]), (name, fx, nu, x, y, got["dpdz"], ref)
+        # and the full surface dp/dz carries that part on top of the normal one
+        total = float(F.surface_dpdz(x, y, A, c, nu, MU, profile, width=w))
+        normal = float(F.surface_dpdz(x, y, A, c, nu, 0.0, profile))
+        assert abs((total - normal) - got["dpdz"]) <= 1e-15 * abs(normal) + 1e-12 * abs(got["dpdz"])
 
 
 @pytest.mark.parametrize("fx", [1e-6, 1e-9, 1e-12])
@@ -115,7 +145,7 @@ def test_surface_shear_and_dpdz_keep_relative_accuracy(fx, nu):
 def test_interior_tangential_keeps_relative_accuracy(fx, z):
     nu = [0.0, 0.3, 0.5][int(round(-math.log10(fx) / 3)) % 3]   # every nu over the fx
     ux0, c, w, c_exact = load(fx, nu)
-    for x, y in points(c_exact, w)[:3] + [(1.4 * A, 0.5 * A)]:
+    for x, y in points(w):
         got = interior_stress_tangential(x, y, z * A, A, c, nu, MU, PROFILE, width=w)
         ref = interior_reference(x, y, z * A, nu, c_exact)
         scale = max(abs(v) for v in ref.values())
