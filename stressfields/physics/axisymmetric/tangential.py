@@ -40,18 +40,28 @@ def _width(a, c, w):
 
 
 def _stick_root(r, a, c, w):
-    """sqrt(c^2 - r^2) (0 for r >= c) with c - r = (a - r) - w: next to a thin slip annulus the
-    rounding of c (1e-16 a) is not magnified by 1/(c - r) (docs/theory/axisymmetric.md (A109))."""
+    """sqrt(c^2 - r^2) (0 for r >= c) with c - r = (a - r) - w where r >= a/2 (a - r exact there,
+    Sterbenz): next to a thin slip annulus the rounding of c (1e-16 a) is not magnified by
+    1/(c - r) (docs/theory/axisymmetric.md (A109)); nearer the centre c - r and c + r of the radii
+    (there a - r and a - w would carry 1e-16 a into a small c - r or c + r of a wide annulus)."""
     if w is None:
         return sqrt_diff(c, r)
-    return np.sqrt(np.maximum(((a - r) - w) * ((a + r) - w), 0.0))
+    near = r >= 0.5 * a
+    return np.sqrt(np.maximum(np.where(near, (a - r) - w, c - r) * np.where(near, (a + r) - w, c + r), 0.0))
+
+
+def _slip_factors(r, a, c, w):
+    """(r - c, r + c), with r - c = (r - a) + w where r >= a/2, as ``_stick_root``."""
+    near = r >= 0.5 * a
+    return np.where(near, (r - a) + w, r - c), np.where(near, (a + r) - w, r + c)
 
 
 def _slip_root(r, a, c, w):
-    """sqrt(r^2 - c^2) (0 for r <= c) with r - c = (r - a) + w, as ``_stick_root``."""
+    """sqrt(r^2 - c^2) (0 for r <= c) from ``_slip_factors``."""
     if w is None:
         return sqrt_diff(r, np.minimum(r, c))
-    return np.sqrt(np.maximum(((r - a) + w) * ((a + r) - w), 0.0))
+    d, s = _slip_factors(r, a, c, w)
+    return np.sqrt(np.maximum(d * s, 0.0))
 
 
 def shear_closed(closed, r, a, c, mu, w=None):
@@ -148,7 +158,11 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu, w=None):
             # A = sqrt(1 - a^2/r^2), C = sqrt(1 - c^2/r^2) without r^2: r * r underflows to 0 below
             # r = 1.5e-154 a, and C = sqrt_diff(r, c)/r then dropped the gross-slip (c = 0, C = 1) part
             A = np.where(outside, _root_ratio(r, a), 0.0)
-            Cc = _root_ratio(r, c) if w is None else _slip_root(r, a, c, w) / r
+            if w is None:
+                Cc = _root_ratio(r, c)
+            else:   # as _root_ratio, with r - c from the annulus width (A109)
+                d, sm = _slip_factors(r, a, c, w)
+                Cc = np.sqrt(np.maximum((d / r) * (sm / r), 0.0))
             wd = _width(a, c, w)
             # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C), docs/theory/axisymmetric.md (A90)
             D1 = np.where(outside, (wd / r) * ((2.0 * a - wd) / r) / (A + Cc), Cc)
