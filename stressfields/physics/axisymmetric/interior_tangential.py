@@ -39,7 +39,7 @@ from .interior import (_direction, _Flat, _live, _Nodes, _superpose, _superpose_
                        dpdz_integrator, flat_arguments)
 from .interior_hertz import COMPONENTS, _geometry, _sliding_punch_scalars, mns, sliding_punch_unit, sliding_unit
 from .displacement import thin_annulus
-from .profiles import Profile
+from .profiles import Profile, _load_exponent
 from .surface import surface_dpdz, surface_stress
 
 __all__ = ["COMPONENTS", "interior_stress_tangential", "interior_dpdz_tangential", "sliding_dpdz_unit",
@@ -68,10 +68,11 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
     the in-plane components at a conical tip in gross slip).  Elsewhere finite and continuous.
 
     ``width``: the slip annulus' width a - c where it is known more accurately than the difference
-    of the rounded radii (``profiles.annulus_width``); None: a - c.  With it the paraboloid below a
-    slip ratio 1 - (c/a)^2 of ``_THIN`` (1e-3) is, at z > 0, the superposition of sliding punches over
-    [c, a] (``_thin_paraboloid``), which keeps its relative accuracy as c -> a, where the difference
-    of the two Hertz fields keeps 1e-16/(1 - (c/a)^2) of it."""
+    of the rounded radii (``profiles.annulus_width``); None: a - c.  With it the power-law profiles
+    (cone, paraboloid, power law) below a slip ratio 1 - (c/a)^n of ``_THIN`` (1e-3) are, at z > 0,
+    the superposition of sliding punches over the annulus of width w (``_thin_annulus``), which
+    keeps its relative accuracy as c -> a, where the paraboloid's difference of two Hertz fields
+    and the 1-D route's range a - c of the rounded c keep 1e-16/(1 - (c/a)^n) of it."""
     shape, (x, y, z, a, c, nu, mu, w) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu,
                                                        a - c if width is None else width)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
@@ -80,12 +81,13 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
     family = _family(profile, method)
     if family == "paraboloid":
         out = _paraboloid(x, y, z, a, c, nu, mu, float(profile.closed[1]))
-        _thin_paraboloid(out, x, y, z, a, c, w, nu, mu, float(profile.closed[1]), sliding_punch_unit, 0)
     elif family == "flat_punch":
         k = np.where(c < a, mu * profile.depth_ / a, 0.0)
         out = {key: k * v for key, v in sliding_punch_unit(x / a, y / a, z / a, nu).items()}
     else:
         out = _superposition(x, y, z, a, c, nu, mu, profile, rtol)
+    if family != "flat_punch" and width is not None:
+        _thin_annulus(out, x, y, z, a, c, w, nu, mu, profile, sliding_punch_unit, 0)
     return {key: out[key].reshape(shape) for key in COMPONENTS}
 
 
@@ -114,23 +116,31 @@ def _paraboloid(x, y, z, a, c, nu, mu, R):
     return out
 
 
-#: below this slip ratio 1 - (c/a)^2 the superposition replaces the difference of the two Hertz
-#: fields: the difference loses 1e-16 |T|/|value| ~ 1e-16/rho times the ratio of one Hertz term to
-#: the value (up to ~100 in the stick zone), so 1e-3 keeps it within 1e-12 of the largest component
+#: below this slip ratio rho = 1 - (c/a)^n the superposition over the thin annulus replaces the
+#: difference of the paraboloid's two Hertz fields and the 1-D route over [c, a]: the difference
+#: loses 1e-16 |T|/|value| ~ 1e-16/rho times the ratio of one Hertz term to the value (up to ~100
+#: in the stick zone), the 1-D route's range a - c of the rounded c 1e-16/rho of the annulus' part,
+#: so 1e-3 keeps both within 1e-12 of the largest component
 _THIN = 1e-3
 
 
-def _thin_paraboloid(out, x, y, z, a, c, w, nu, mu, R, unit, power):
-    """Replace in ``out`` the values at z > 0 where the slip annulus is thin (1 - (c/a)^2 < ``_THIN``)
-    by the superposition (2 mu / R) int_c^a t^power unit(p/t) dt of sliding punches, (I45) for the
-    paraboloid (docs/theory/interior.md (I59)): the stresses with ``sliding_punch_unit`` and
-    power 0, dp/dz with ``sliding_punch_dpdz_unit`` and power -1.  The width w comes from the slip
-    ratio, so the result keeps its relative accuracy as c -> a."""
-    i = np.flatnonzero((c > 0.0) & (z > 0.0) & (w * (2.0 * a - w) < _THIN * a * a))
+def _thin_annulus(out, x, y, z, a, c, w, nu, mu, profile, unit, shift):
+    """Replace in ``out`` the values at z > 0 where the slip annulus of a power-law profile is thin
+    (rho = 1 - (c/a)^n < ``_THIN``) by the superposition of sliding punches over it, (I45) with
+    g'(t) = g'(a) (t/a)^(n-1):  mu g'(a) a^(1-n) int_c^a t^(n-2+shift) unit(p/t) dt
+    (docs/theory/interior.md (I59)): the stresses with ``sliding_punch_unit`` and shift 0, dp/dz
+    with ``sliding_punch_dpdz_unit`` and shift -1.  The width w comes from the slip ratio
+    (``profiles.annulus_width``), so the result keeps its relative accuracy as c -> a."""
+    n = _load_exponent(profile)
+    if n is None:
+        return out
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rho = -np.expm1(n * np.log1p(-w / a))
+    i = np.flatnonzero((c > 0.0) & (z > 0.0) & (rho < _THIN))
     if not i.size:
         return out
-    part = thin_annulus(x[i], y[i], z[i], a[i], c[i], w[i], nu[i], unit, power)
-    k = 2.0 * mu[i] / R
+    part = thin_annulus(x[i], y[i], z[i], a[i], c[i], w[i], nu[i], unit, n - 2.0 + shift)
+    k = mu[i] * profile.dg(a[i]) / a[i] ** (n - 1.0)
     for key, v in part.items():
         out[key][i] = k * v
     return out
@@ -268,7 +278,7 @@ def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method:
     rtol * max(|value|, mu p_m/a).  On the surface z = 0 the tangential part of the surface kernel
     (docs/theory/axisymmetric.md (A53)-(A59)), +-inf at r = c and r = a as there.  ``width`` as
     ``interior_stress_tangential``: on the surface it goes to the surface kernel, below it the thin
-    annulus of the paraboloid is the superposition (``_thin_paraboloid``)."""
+    annulus of a power-law profile is the superposition (``_thin_annulus``)."""
     shape, (x, y, z, a, c, nu, mu, w) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu,
                                                        a - c if width is None else width)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
@@ -287,10 +297,10 @@ def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method:
     i = np.flatnonzero(act & (z > 0.0))
     if i.size:
         out[i] = _dpdz_below(x[i], y[i], z[i], a[i], c[i], nu[i], mu[i], profile, family, rtol)
-        if family == "paraboloid":
+        if family != "flat_punch" and width is not None:
             below = {"dpdz": out[i]}
-            _thin_paraboloid(below, x[i], y[i], z[i], a[i], c[i], w[i], nu[i], mu[i], float(profile.closed[1]),
-                             lambda *p, rm1=None: {"dpdz": sliding_punch_dpdz_unit(*p, rm1=rm1)}, -1)
+            _thin_annulus(below, x[i], y[i], z[i], a[i], c[i], w[i], nu[i], mu[i], profile,
+                          lambda *p, rm1=None: {"dpdz": sliding_punch_dpdz_unit(*p, rm1=rm1)}, -1)
             out[i] = below["dpdz"]
     return out.reshape(shape)
 

@@ -224,7 +224,7 @@ def _stress_main(profile, closed, ords, comps, x, y, r, a, c, nu, mu, w):
         if need_inplane:
             ip = np.flatnonzero(act & (r > c))
             if ip.size:
-                th_lo, th_hi = tangential.inplane_angles(r[ip], a[ip], c[ip])
+                th_lo, th_hi = tangential.inplane_angles(r[ip], a[ip], c[ip], w[ip])
                 P0, P2 = theta_moments(profile, r[ip], th_lo, th_hi, ords)
                 v = tangential.inplane_from_moments(x[ip], y[ip], r[ip], nu[ip], mu[ip], P0, P2)
                 for k, val in zip(("xx", "yy", "xy"), v):

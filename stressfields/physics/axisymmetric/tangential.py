@@ -236,10 +236,11 @@ def shear_from_integrals(r, a, mu, G_slip):
     return np.where(r <= a, -mu / math.pi * G_slip, 0.0)
 
 
-def inplane_angles(r, a, c):
-    """Integration limits of eq. (25) in t (u = r sin t): [arcsin(min(r,c)/r), arcsin(min(r,a)/r)]."""
+def inplane_angles(r, a, c, w=None):
+    """Integration limits of eq. (25) in t (u = r sin t): [arcsin(min(r,c)/r), arcsin(min(r,a)/r)];
+    ``w`` as ``shear_closed`` (sqrt(r^2 - c^2) from the annulus width, (A109))."""
     th_hi = np.where(r <= a, 0.5 * math.pi, np.arctan2(a, sqrt_diff(r, a)))
-    th_lo = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, sqrt_diff(r, c)))
+    th_lo = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, _slip_root(r, a, c, w)))
     return th_lo, th_hi
 
 
