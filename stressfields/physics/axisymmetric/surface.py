@@ -78,10 +78,10 @@ def _validate(a, c, nu, mu):
                          f"a = {a_b[~ok].ravel()[0]!r}")
 
 
-def _width(a, c, width, shape):
-    """The annulus width a - c per flat point: ``width`` broadcast to ``shape`` where given."""
-    if width is None:
-        return a - c
+def _width(width, shape):
+    """The annulus width per flat point: ``width`` broadcast to ``shape``; where not given NaN (not
+    thin: the kernels take a - c of the radii)."""
+    width = math.nan if width is None else width
     return np.ascontiguousarray(np.broadcast_to(np.asarray(width, dtype=float), shape)).ravel()
 
 
@@ -264,15 +264,17 @@ def _stress_origin(profile, closed, ords, a, c, nu, mu, w):
     # shear: -(mu/pi) int_c^a g'(u)/u du (r -> 0 of eq. 24)
     xz = np.zeros_like(a)
     if np.any(act):
-        if closed is not None and closed[0] == "paraboloid":
-            lim = 2.0 * w / closed[1]                     # LI(c, a) with a - c = w, not the rounded c
-        elif m0 > 0.0:
+        if m0 > 0.0:
             lim = LI(np.where(act, c, a), a)
+            if closed is not None and closed[0] == "paraboloid":     # LI(c, a) with a - c = w (A109)
+                lim = np.where(tangential.thin(a, w), 2.0 * w / closed[1], lim)
         else:   # int_0^a g'(u)/u du diverges for a conical tip: only partial slip is finite
             part = act & (c > 0.0)
             cone = closed is not None and closed[0] == "cone"
             # the cone's B ln(a/c) as -B log1p(-w/a): no ratio next to 1 as c -> a
-            inner = -B * np.log1p(-np.where(part, w, 0.0) / a) if cone else LI(np.where(part, c, a), a)
+            inner = LI(np.where(part, c, a), a)
+            if cone:
+                inner = np.where(tangential.thin(a, w), -B * np.log1p(-np.where(part, w, 0.0) / a), inner)
             lim = np.where(part, inner, math.copysign(math.inf, B))
         xz = np.where(act, -mu / math.pi * lim, 0.0)
     return dict(xx=sxx, yy=syy, zz=szz, xy=sxy, xz=xz, yz=np.zeros_like(a))
@@ -336,7 +338,7 @@ def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method
     ords = orders(rtol)
     closed = _route(profile, method)
     shape, (x, y, a, c, nu, mu) = _prepare(x, y, a, c, nu, mu, profile)
-    w = _width(a, c, width, shape)
+    w = _width(width, shape)
     n = x.size
     out = {k: np.empty(n) for k in comps}
     step = _CHUNK if closed is None else _CLOSED_CHUNK
@@ -403,7 +405,7 @@ def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10, wi
     ords = orders(rtol)
     closed = _route(profile, method)
     shape, (x, y, a, c, nu, mu) = _prepare(x, y, a, c, nu, mu, profile)
-    w = _width(a, c, width, shape)
+    w = _width(width, shape)
     n = x.size
     out = np.full(n, np.nan)
     step = _CHUNK if closed is None else _CLOSED_CHUNK

@@ -33,35 +33,48 @@ def _zero_where_x0(x, v):
     return np.where(x == 0.0, 0.0, v)
 
 
+#: annulus widths w <= _THIN_WIDTH a take the forms of (A109); wider ones the plain differences of
+#: the rounded radii, which lose at most 1e-16 a/w (1e-13) there, so that their values stay bit for bit
+_THIN_WIDTH = 1e-3
+
+
+def thin(a, w):
+    """Where the slip annulus' width ``w`` (None: not known) is thin, w <= ``_THIN_WIDTH`` a."""
+    return np.zeros(np.shape(a), dtype=bool) if w is None else (w <= _THIN_WIDTH * a)
+
+
 def _width(a, c, w):
-    """The slip annulus' width a - c: ``w`` where given (from the exact slip ratio, ``annulus_width``),
-    else the difference of the rounded radii."""
-    return a - c if w is None else w
+    """The slip annulus' width a - c: ``w`` (from the exact slip ratio, ``profiles.annulus_width``)
+    where the annulus is thin, else the difference of the rounded radii."""
+    return a - c if w is None else np.where(thin(a, w), w, a - c)
+
+
+def _near(r, a, w):
+    """Points where the offsets of (A109) apply: a thin annulus and r >= a/2 (a - r exact there,
+    Sterbenz; nearer the centre a - r would carry 1e-16 a into c - r without need)."""
+    return thin(a, w) & (r >= 0.5 * a)
 
 
 def _stick_root(r, a, c, w):
-    """sqrt(c^2 - r^2) (0 for r >= c) with c - r = (a - r) - w where r >= a/2 (a - r exact there,
-    Sterbenz): next to a thin slip annulus the rounding of c (1e-16 a) is not magnified by
-    1/(c - r) (docs/theory/axisymmetric.md (A109)); nearer the centre c - r and c + r of the radii
-    (there a - r and a - w would carry 1e-16 a into a small c - r or c + r of a wide annulus)."""
+    """sqrt(c^2 - r^2) (0 for r >= c), with c - r = (a - r) - w at ``_near`` points: next to a thin
+    slip annulus the rounding of c (1e-16 a) is not magnified by 1/(c - r)
+    (docs/theory/axisymmetric.md (A109))."""
+    plain = sqrt_diff(c, r)
     if w is None:
-        return sqrt_diff(c, r)
-    near = r >= 0.5 * a
-    return np.sqrt(np.maximum(np.where(near, (a - r) - w, c - r) * np.where(near, (a + r) - w, c + r), 0.0))
+        return plain
+    return np.where(_near(r, a, w), np.sqrt(np.maximum(((a - r) - w) * (c + r), 0.0)), plain)
 
 
-def _slip_factors(r, a, c, w):
-    """(r - c, r + c), with r - c = (r - a) + w where r >= a/2, as ``_stick_root``."""
-    near = r >= 0.5 * a
-    return np.where(near, (r - a) + w, r - c), np.where(near, (a + r) - w, r + c)
+def _slip_difference(r, a, c, w):
+    """r - c, as (r - a) + w at ``_near`` points (``_stick_root``)."""
+    return r - c if w is None else np.where(_near(r, a, w), (r - a) + w, r - c)
 
 
 def _slip_root(r, a, c, w):
-    """sqrt(r^2 - c^2) (0 for r <= c) from ``_slip_factors``."""
+    """sqrt(r^2 - c^2) (0 for r <= c), with ``_slip_difference``."""
     if w is None:
         return sqrt_diff(r, np.minimum(r, c))
-    d, s = _slip_factors(r, a, c, w)
-    return np.sqrt(np.maximum(d * s, 0.0))
+    return np.sqrt(np.maximum(_slip_difference(r, a, c, w) * (r + c), 0.0))
 
 
 def shear_closed(closed, r, a, c, mu, w=None):
@@ -76,14 +89,16 @@ def shear_closed(closed, r, a, c, mu, w=None):
             p0 = 0.5 * closed[1]
             stick = r <= c
             # ln((a + sqrt(a^2-r^2)) / (c + sqrt(c^2-r^2))): no difference of two arccosh (A36)
-            # = log1p((a - c + sa - sc)/(c + sc)), sa - sc = (a - c)(a + c)/(sa + sc): no ratio near 1
-            v_stick = np.log1p((wd + wd * (2.0 * a - wd) / (sa + sc)) / np.where(stick, c + sc, 1.0))
+            v_stick = np.log((a + sa) / np.where(stick, c + sc, 1.0))
+            # thin annulus: log1p((a - c + sa - sc)/(c + sc)), sa - sc = (a - c)(a + c)/(sa + sc) (A109)
+            v_stick = np.where(thin(a, w), np.log1p((wd + wd * (a + c) / (sa + sc)) / np.where(stick, c + sc, 1.0)),
+                               v_stick)
             v_slip = arccosh_ratio(a, np.minimum(r, a))
             return np.where(r <= a, -mu * p0 * np.where(stick, v_stick, v_slip), 0.0)
         if kind == "paraboloid":
             P = 2.0 / (math.pi * closed[1])
             # stick zone: sa - sc = (a - c)(a + c)/(sa + sc), no cancellation as c -> a (A99)
-            v = np.where(r <= c, wd * (2.0 * a - wd) / (sa + sc), sa)
+            v = np.where(r <= c, wd * (a + c) / (sa + sc), sa)
             return -mu * P * np.where(r <= a, v, 0.0)
         if kind == "flat_punch":
             return np.where(r <= a, -mu * closed[2] / (math.pi * sa), 0.0)
@@ -125,7 +140,7 @@ def _hertz_angles(r, a, c, w=None):
     # r <= c: empty; c < r <= a: arccos(c/r); r > a: the difference of the two arcsines
     slip = np.arctan2(sc, c)
     with np.errstate(invalid="ignore", divide="ignore"):
-        outer = np.arctan2(r * r * (wd * (2.0 * a - wd) / (a * sc + c * sa)), sa * sc + a * c)
+        outer = np.arctan2(r * r * (wd * (a + c) / (a * sc + c * sa)), sa * sc + a * c)
     delta = np.where(r <= c, 0.0, np.where(r <= a, slip, outer))
     return th_c, delta
 
@@ -158,14 +173,13 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu, w=None):
             # A = sqrt(1 - a^2/r^2), C = sqrt(1 - c^2/r^2) without r^2: r * r underflows to 0 below
             # r = 1.5e-154 a, and C = sqrt_diff(r, c)/r then dropped the gross-slip (c = 0, C = 1) part
             A = np.where(outside, _root_ratio(r, a), 0.0)
-            if w is None:
-                Cc = _root_ratio(r, c)
-            else:   # as _root_ratio, with r - c from the annulus width (A109)
-                d, sm = _slip_factors(r, a, c, w)
-                Cc = np.sqrt(np.maximum((d / r) * (sm / r), 0.0))
+            Cc = _root_ratio(r, c)
+            if w is not None:   # as _root_ratio, with r - c from the annulus width (A109)
+                Cc = np.where(_near(r, a, w), np.sqrt(np.maximum((_slip_difference(r, a, c, w) / r) * ((r + c) / r),
+                                                                 0.0)), Cc)
             wd = _width(a, c, w)
             # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C), docs/theory/axisymmetric.md (A90)
-            D1 = np.where(outside, (wd / r) * ((2.0 * a - wd) / r) / (A + Cc), Cc)
+            D1 = np.where(outside, (wd / r) * ((a + c) / r) / (A + Cc), Cc)
             # A^3 - C^3 = -D1 (3 - E3): the brackets of eq. (40) are written with E3 = 3 - A^2 - AC - C^2,
             # formed without cancellation (A96), so that their O(1) parts cancel exactly (by algebra, not
             # in rounding: sigma_yy at nu = 1/2, r = 1e6 a was 1.3e-5 relative off) and what remains is O(a^2/r^2)
@@ -212,14 +226,15 @@ def dpdz_closed(closed, x, r, a, c, nu, mu, w=None):
         if kind == "cone":
             k = C2 * mu * 0.5 * closed[1]
             # (a/sqrt(a^2-r^2) - c/sqrt(c^2-r^2)) / r^2 = 1/(sa(a+sa)) - 1/(sc(c+sc)), docs/theory/axisymmetric.md (A89)
-            # = -(a^2 - c^2)/(sa sc (a sc + c sa)): the two terms' difference written out (A109)
-            v_stick = k * x * (wd * (2.0 * a - wd)) / (sa * sc * (a * sc + c * sa))
+            v_stick = -k * x * (1.0 / (sa * (a + sa)) - 1.0 / (sc * (c + sc)))
+            # thin annulus: = -(a^2 - c^2)/(sa sc (a sc + c sa)), the difference written out (A109)
+            v_stick = np.where(thin(a, w), k * x * (wd * (a + c)) / (sa * sc * (a * sc + c * sa)), v_stick)
             v_slip = -k * (x / r) * (a / r) / sa   # not x a / (r^2 sa): r^2 underflows at r = 1e-300
             v = np.where(stick, v_stick, np.where(inside, v_slip, 0.0))
         elif kind == "paraboloid":
             k = 2.0 * C2 * mu / (math.pi * closed[1])
             # stick zone: 1/sa - 1/sc = -(a - c)(a + c)/(sa sc (sa + sc)), no cancellation as c -> a (A100)
-            v_stick = np.where(wd == 0.0, 0.0, -wd * (2.0 * a - wd) / (sa * sc * (sa + sc)))
+            v_stick = np.where(c == a, 0.0, -wd * (a + c) / (sa * sc * (sa + sc)))
             v = -k * x * np.where(stick, v_stick, np.where(inside, 1.0 / sa, 0.0))
         elif kind == "flat_punch":
             v = np.where(inside, C2 * mu * closed[2] * x / (math.pi * sa ** 3), 0.0)
