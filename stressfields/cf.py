@@ -56,9 +56,10 @@ ACCURACY_CONTRACT = """\
   traction within 1e-15 of the stick edge c/a, interior fields next to the edge ring); in-plane
   components of the tangential field below the surface that pass through zero meet 1e-12 of the
   largest component rather than of their own value; wavy `error_estimate` bounds the pressures,
-  not `uz`; as fx -> 0 the purely tangential stress components and dp/dz parts (e.g. the surface
-  sigma_xz in the stick zone) are accurate to about 1e-16/rho of their value, rho = 1 - (c/a)^2
-  (8e-8 at fx = 1e-9 for the paraboloid; the displacements are not limited so); physical loads are
+  not `uz`; as fx -> 0 the purely tangential parts of a tabulated profile's stresses and dp/dz, and
+  the surface dp/dz of power laws other than n = 1, 2, are accurate to about 1e-16/rho of their
+  value, rho the slip ratio (the cone's, the paraboloid's and, below the surface, every power
+  law's keep 1e-12 of their value down to fx = 1e-12; the displacements are not limited so); physical loads are
   accepted where a, delta, F_N, F_N/E*, p_m and p_m/E* stay within [1e-300, 1e300] (the check names
   the valid load range); stored as float32, values below 1.2e-38 in magnitude keep an absolute
   accuracy of 1.4e-45 rather than the relative 6e-8 (float32's subnormal range).

@@ -382,10 +382,38 @@ _THIN = 1e-4
 _NEAR_NODES, _NEAR_LEVELS = 24, 60
 
 
-def _annulus_near(x, y, z, a, w, nu):
-    """int_{a-w}^a t U(p/t) dt (U: ``sliding_punch_displacement_unit``) at points next to the thin
-    annulus, in offsets s = a - t from the outer edge, so that the panels' widths, and so the weights,
-    carry w and not a rounded a - w."""
+def thin_annulus(x, y, z, a, c, w, nu, unit, power=0):
+    """int_{a-w}^a t^power unit(p/t) dt, p = (x, y, z), the superposition of punches over a thin
+    annulus [c, a] of width w (given free of the rounding of c), at every point (1-D arrays):
+    Gauss–Legendre in t = a - w (1 - s)/2 at least ``_ANNULUS_REACH`` widths from the annulus,
+    graded panels (``_annulus_near``) nearer.  ``unit(x, y, z, nu, rm1=None)`` -> dict of arrays."""
+    r = np.hypot(x, y)
+    gap = np.hypot(np.where(r < c, c - r, np.where(r > a, r - a, 0.0)), z)
+    far = np.flatnonzero(gap >= _ANNULUS_REACH * w)
+    out: dict[str, np.ndarray] = {}
+
+    def put(i, part):
+        for k, v in part.items():
+            out.setdefault(k, np.zeros(x.size))[i] = v
+
+    if far.size:
+        s, ws = gauss_legendre(_ANNULUS_NODES)                # on [0, 1]
+        A, W = a[far, None], w[far, None]
+        t = A - W * (1.0 - s[None, :])                        # nodes in (c, a)
+        # r/t - 1 without the rounding of t: a point at depth z next to the ring sees it on the scale z
+        rm1 = ((r[far] - a[far])[:, None] + W * (1.0 - s[None, :])) / t
+        vals = unit(x[far, None] / t, y[far, None] / t, z[far, None] / t, nu[far, None], rm1=rm1)
+        put(far, {k: np.sum(W * ws[None, :] * t ** power * v, axis=1) for k, v in vals.items()})
+    near = np.flatnonzero(~(gap >= _ANNULUS_REACH * w))
+    for lo in range(0, near.size, 256):                   # (points x 121 panels x 24 nodes) blocks
+        i = near[lo:lo + 256]
+        put(i, _annulus_near(x[i], y[i], z[i], a[i], w[i], nu[i], unit, power))
+    return out
+
+
+def _annulus_near(x, y, z, a, w, nu, unit, power):
+    """int_{a-w}^a t^power unit(p/t) dt at points next to the thin annulus, in offsets s = a - t from
+    the outer edge, so that the panels' widths, and so the weights, carry w and not a rounded a - w."""
     r = np.hypot(x, y)
     s_star = np.clip(a - r, 0.0, w)                       # offset of the ring point nearest to the point
     d = np.hypot((a - r) - s_star, z)                     # its distance
@@ -402,8 +430,8 @@ def _annulus_near(x, y, z, a, w, nu):
     t = a[:, None] - s
     rm1 = ((r - a)[:, None] + s) / t                      # r/t - 1 without the rounding of t
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        unit = sliding_punch_displacement_unit(x[:, None] / t, y[:, None] / t, z[:, None] / t, nu[:, None], rm1=rm1)
-    return {k: np.sum(np.where(ws > 0.0, ws * t * v, 0.0), axis=1) for k, v in unit.items()}
+        vals = unit(x[:, None] / t, y[:, None] / t, z[:, None] / t, nu[:, None], rm1=rm1)
+    return {k: np.sum(np.where(ws > 0.0, ws * t ** power * v, 0.0), axis=1) for k, v in vals.items()}
 
 
 def _hertz_mindlin(x, y, z, a, c, nu, mu, slip=None):
@@ -428,21 +456,10 @@ def _hertz_mindlin(x, y, z, a, c, nu, mu, slip=None):
     if slip is None:
         return out
     w = a * slip / (1.0 + np.sqrt(np.clip(1.0 - slip, 0.0, 1.0)))
-    r = np.hypot(x, y)
-    gap = np.hypot(np.where(r < c, c - r, np.where(r > a, r - a, 0.0)), z)
-    thin = np.flatnonzero((c > 0.0) & (slip < _THIN) & (gap >= _ANNULUS_REACH * w))
+    thin = np.flatnonzero((c > 0.0) & (slip < _THIN))
     if thin.size:
-        s, ws = gauss_legendre(_ANNULUS_NODES)                # on [0, 1]
-        A, W = a[thin, None], w[thin, None]
-        t = A - W * (1.0 - s[None, :])                        # nodes in (c, a)
-        unit = sliding_punch_displacement_unit(x[thin, None] / t, y[thin, None] / t, z[thin, None] / t,
-                                               nu[thin, None])
-        for k in _KEYS:
-            out[k][thin] = 2.0 * mu[thin] / a[thin] ** 2 * np.sum(W * ws[None, :] * t * unit[k], axis=1)
-    near = np.flatnonzero((c > 0.0) & (slip < _THIN) & (gap < _ANNULUS_REACH * w))
-    for lo in range(0, near.size, 256):                   # (points x 121 panels x 24 nodes) blocks
-        i = near[lo:lo + 256]
-        part = _annulus_near(x[i], y[i], z[i], a[i], w[i], nu[i])
+        i = thin
+        part = thin_annulus(x[i], y[i], z[i], a[i], c[i], w[i], nu[i], sliding_punch_displacement_unit, power=1)
         for k in _KEYS:
             out[k][i] = 2.0 * mu[i] / a[i] ** 2 * part[k]
     return out

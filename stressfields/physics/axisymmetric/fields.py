@@ -37,7 +37,7 @@ from .displacement import NAMES as DISPLACEMENTS
 from .displacement import displacements, has_displacement_closed_form, tangential_displacements
 from .interior import interior_dpdz, interior_stress
 from .interior_tangential import interior_dpdz_tangential, interior_stress_tangential
-from .profiles import Profile
+from .profiles import Profile, annulus_width
 from .routes import Route, resolve, resolve_depth, resolve_interior
 from .surface import stick_radius, surface_dpdz, surface_stress
 
@@ -124,7 +124,8 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
         out["stick_radius"] = c
     if not spatial:
         return out, route
-    kw = dict(method=route.kernel, rtol=rtol)
+    # a - c from the slip ratio: the tangential part keeps its relative accuracy as fx -> 0 (A109)
+    kw = dict(method=route.kernel, rtol=rtol, width=annulus_width(profile, a, c_kernel, ux0, nu, mu_kernel))
     out.update(_surface(
         spatial, scale, dpdz_scale,
         stress=lambda comps: surface_stress(x, y, a, c_kernel, nu, mu_kernel, profile, components=comps, **kw),
@@ -181,13 +182,16 @@ def _with_depth(names, profile, x, y, z, *, a, nu, mu, ux0, stick, method, rtol,
     kw = dict(method=interior_route.kernel, rtol=rtol)
     P = [v[deep] for v in (X, Y, Z, A, NU)]
     T = [v[deep] for v in (X, Y, Z, A, C, NU, MU_K)]   # the arguments of the tangential kernels
+    # a - c from the slip ratio, as on the surface (A109)
+    W = np.broadcast_to(annulus_width(profile, A, C, UX0, NU, MU_K), shape)[deep]
     on = np.flatnonzero(loaded[deep])         # the deep points under tangential load
     below = _surface(valued, SC[deep], DSC[deep],
                      stress=lambda comps: _add(interior_stress(*P, profile, **kw), on, comps,
-                                               lambda: interior_stress_tangential(*(v[on] for v in T), profile, **kw)),
+                                               lambda: interior_stress_tangential(*(v[on] for v in T), profile,
+                                                                                  width=W[on], **kw)),
                      dpdz=lambda: _add({"dpdz": interior_dpdz(*P, profile, **kw)}, on, ("dpdz",),
                                        lambda: {"dpdz": interior_dpdz_tangential(*(v[on] for v in T), profile,
-                                                                                 **kw)})["dpdz"],
+                                                                                 width=W[on], **kw)})["dpdz"],
                      region=lambda: None)
     return _merge_depth(out, below, names, valued, deep, shape), route
 

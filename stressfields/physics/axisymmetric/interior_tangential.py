@@ -38,7 +38,8 @@ from ..flags import quiet
 from .interior import (_direction, _Flat, _live, _Nodes, _superpose, _superpose_flat, check_arguments,
                        dpdz_integrator, flat_arguments)
 from .interior_hertz import COMPONENTS, _geometry, _sliding_punch_scalars, mns, sliding_punch_unit, sliding_unit
-from .profiles import Profile
+from .displacement import thin_annulus
+from .profiles import Profile, _load_exponent
 from .surface import surface_dpdz, surface_stress
 
 __all__ = ["COMPONENTS", "interior_stress_tangential", "interior_dpdz_tangential", "sliding_dpdz_unit",
@@ -49,7 +50,7 @@ METHODS = ("auto", "closed", "quadrature")
 
 @quiet
 def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method: str = "auto",
-                               rtol: float = 1e-10) -> dict[str, np.ndarray]:
+                               rtol: float = 1e-10, width=None) -> dict[str, np.ndarray]:
     """Tangential part of the stress tensor / E* at (x, y, z), z >= 0 the depth, for the contact
     radius ``a``, stick radius ``c`` (0 <= c <= a; c = 0 gross slip) and coefficient of friction
     ``mu`` >= 0 (Cattaneo–Mindlin, traction along +x on the half-space); docs/theory/interior.md
@@ -64,8 +65,16 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
     Singular points: the flat punch's edge ring (r = a, z = 0), where sigma_xz = -inf and the other
     components follow (I32) (+-inf, 0 by symmetry, or NaN where the limit depends on the direction);
     on the surface z = 0 of the 1-D route the values and flags of the surface kernels (e.g. NaN for
-    the in-plane components at a conical tip in gross slip).  Elsewhere finite and continuous."""
-    shape, (x, y, z, a, c, nu, mu) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu)
+    the in-plane components at a conical tip in gross slip).  Elsewhere finite and continuous.
+
+    ``width``: the slip annulus' width a - c where it is known more accurately than the difference
+    of the rounded radii (``profiles.annulus_width``); None: a - c.  With it the power-law profiles
+    (cone, paraboloid, power law) below a slip ratio 1 - (c/a)^n of ``_THIN`` (1e-3) are, at z > 0,
+    the superposition of sliding punches over the annulus of width w (``_thin_annulus``), which
+    keeps its relative accuracy as c -> a, where the paraboloid's difference of two Hertz fields
+    and the 1-D route's range a - c of the rounded c keep 1e-16/(1 - (c/a)^n) of it."""
+    shape, (x, y, z, a, c, nu, mu, w) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu,
+                                                       a - c if width is None else width)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
     check_arguments(z, a, nu, profile, c=c, mu=mu)
@@ -77,6 +86,8 @@ def interior_stress_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, metho
         out = {key: k * v for key, v in sliding_punch_unit(x / a, y / a, z / a, nu).items()}
     else:
         out = _superposition(x, y, z, a, c, nu, mu, profile, rtol)
+    if family != "flat_punch" and width is not None:
+        _thin_annulus(out, x, y, z, a, c, w, nu, mu, profile, sliding_punch_unit, 0)
     return {key: out[key].reshape(shape) for key in COMPONENTS}
 
 
@@ -102,6 +113,36 @@ def _paraboloid(x, y, z, a, c, nu, mu, R):
         stick = sliding_unit(x[part] / cp, y[part] / cp, z[part] / cp, nu[part])
         for key in COMPONENTS:
             out[key][part] -= k[part] * (cp / a[part]) * stick[key]
+    return out
+
+
+#: below this slip ratio rho = 1 - (c/a)^n the superposition over the thin annulus replaces the
+#: difference of the paraboloid's two Hertz fields and the 1-D route over [c, a]: the difference
+#: loses 1e-16 |T|/|value| ~ 1e-16/rho times the ratio of one Hertz term to the value (up to ~100
+#: in the stick zone), the 1-D route's range a - c of the rounded c 1e-16/rho of the annulus' part,
+#: so 1e-3 keeps both within 1e-12 of the largest component
+_THIN = 1e-3
+
+
+def _thin_annulus(out, x, y, z, a, c, w, nu, mu, profile, unit, shift):
+    """Replace in ``out`` the values at z > 0 where the slip annulus of a power-law profile is thin
+    (rho = 1 - (c/a)^n < ``_THIN``) by the superposition of sliding punches over it, (I45) with
+    g'(t) = g'(a) (t/a)^(n-1):  mu g'(a) a^(1-n) int_c^a t^(n-2+shift) unit(p/t) dt
+    (docs/theory/interior.md (I59)): the stresses with ``sliding_punch_unit`` and shift 0, dp/dz
+    with ``sliding_punch_dpdz_unit`` and shift -1.  The width w comes from the slip ratio
+    (``profiles.annulus_width``), so the result keeps its relative accuracy as c -> a."""
+    n = _load_exponent(profile)
+    if n is None:
+        return out
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rho = -np.expm1(n * np.log1p(-w / a))
+    i = np.flatnonzero((c > 0.0) & (z > 0.0) & (rho < _THIN))
+    if not i.size:
+        return out
+    part = thin_annulus(x[i], y[i], z[i], a[i], c[i], w[i], nu[i], unit, n - 2.0 + shift)
+    k = mu[i] * profile.dg(a[i]) / a[i] ** (n - 1.0)
+    for key, v in part.items():
+        out[key][i] = k * v
     return out
 
 
@@ -227,7 +268,7 @@ _SLIDING_DPDZ_KERNEL = (dpdz_integrator(sliding_punch_dpdz_unit, sliding_dpdz_un
 
 @quiet
 def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method: str = "auto",
-                             rtol: float = 1e-10) -> np.ndarray:
+                             rtol: float = 1e-10, width=None) -> np.ndarray:
     """Tangential part of d p_h/dz / (E*/length) at (x, y, z), z >= 0, p_h = -trace(sigma)/3;
     arguments and routes as ``interior_stress_tangential`` (docs/theory/interior.md (I34)-(I35)):
     the paraboloid mu (p0/a) [H_T(x/a) - H_T(x/c)] (H_T = ``sliding_dpdz_unit``), the flat punch
@@ -235,8 +276,11 @@ def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method:
     the sliding punches' derivatives over [c, a] directly (I45).  Closed forms:
     relative error at most 1e-12 of |value| where the value is finite; 1-D route: |error| <=
     rtol * max(|value|, mu p_m/a).  On the surface z = 0 the tangential part of the surface kernel
-    (docs/theory/axisymmetric.md (A53)-(A59)), +-inf at r = c and r = a as there."""
-    shape, (x, y, z, a, c, nu, mu) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu)
+    (docs/theory/axisymmetric.md (A53)-(A59)), +-inf at r = c and r = a as there.  ``width`` as
+    ``interior_stress_tangential``: on the surface it goes to the surface kernel, below it the thin
+    annulus of a power-law profile is the superposition (``_thin_annulus``)."""
+    shape, (x, y, z, a, c, nu, mu, w) = flat_arguments("tangential interior", method, x, y, z, a, c, nu, mu,
+                                                       a - c if width is None else width)
     if not (math.isfinite(float(rtol)) and float(rtol) > 0.0):
         raise ValueError(f"rtol must be a positive finite number, got {rtol!r}")
     check_arguments(z, a, nu, profile, c=c, mu=mu)
@@ -248,11 +292,16 @@ def interior_dpdz_tangential(x, y, z, a, c, nu, mu, profile: Profile, *, method:
         kw = dict(method="closed" if family else "quadrature", rtol=max(rtol, 1e-14))
         X, Y, A, C, NU, MU = (v[surf] for v in (x, y, a, c, nu, mu))
         with np.errstate(invalid="ignore"):
-            out[surf] = (surface_dpdz(X, Y, A, C, NU, MU, profile, **kw)
+            out[surf] = (surface_dpdz(X, Y, A, C, NU, MU, profile, width=w[surf], **kw)
                          - surface_dpdz(X, Y, A, A, NU, 0.0, profile, **kw))
     i = np.flatnonzero(act & (z > 0.0))
     if i.size:
         out[i] = _dpdz_below(x[i], y[i], z[i], a[i], c[i], nu[i], mu[i], profile, family, rtol)
+        if family != "flat_punch" and width is not None:
+            below = {"dpdz": out[i]}
+            _thin_annulus(below, x[i], y[i], z[i], a[i], c[i], w[i], nu[i], mu[i], profile,
+                          lambda *p, rm1=None: {"dpdz": sliding_punch_dpdz_unit(*p, rm1=rm1)}, -1)
+            out[i] = below["dpdz"]
     return out.reshape(shape)
 
 

@@ -951,6 +951,25 @@ def slip_ratio(profile: Profile, a, fx, keep=None) -> np.ndarray:
     return np.where(fx >= 1.0, 1.0, (ga - profile.g(c)) / ga)
 
 
+def annulus_width(profile: Profile, a, c, ux0, nu, mu) -> np.ndarray:
+    """The slip annulus' width a - c of the displacement ``ux0`` = u_x0/delta, from the slip ratio
+    rho = G* u_x0 / (mu E* delta) (A32) and not from the rounded c: power laws (c/a)^n = 1 - rho, so
+    a - c = -a expm1(log1p(-rho)/n), which keeps its relative accuracy as fx -> 0 where a - c of the
+    rounded radii keeps only 1e-16 a (docs/theory/axisymmetric.md (A109)).  Where c is not the stick
+    radius of this ux0 (to 1e-13 a: a stick radius given otherwise), beyond power laws (flat punch,
+    tabulated) and outside partial slip, a - c."""
+    a, c, ux0, nu, mu = np.broadcast_arrays(*(_arr(v) for v in (a, c, ux0, nu, mu)))
+    n = _load_exponent(profile)
+    plain = a - c
+    if n is None:
+        return plain
+    rho = slip_of_displacement(ux0, nu, mu)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        w = -a * np.expm1(np.log1p(-np.clip(rho, 0.0, 1.0)) / n)
+        own = (rho > 0.0) & (rho < 1.0) & (c > 0.0) & (np.abs(plain - w) <= 1e-13 * a)
+    return np.where(own, w, plain)
+
+
 def force_ratio(profile: Profile, a, rho) -> np.ndarray:
     """fx = F_x / (mu F_N) of rho = G* u_x0 / (mu E* delta), the inverse of ``slip_ratio``:
     fx = 1 - F_N(c) / F_N(a) with g(c) = (1 - rho) g(a) (docs/theory/axisymmetric.md (A32)); 1 at and

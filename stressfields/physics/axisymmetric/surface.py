@@ -78,6 +78,13 @@ def _validate(a, c, nu, mu):
                          f"a = {a_b[~ok].ravel()[0]!r}")
 
 
+def _width(width, shape):
+    """The annulus width per flat point: ``width`` broadcast to ``shape``; where not given NaN (not
+    thin: the kernels take a - c of the radii)."""
+    width = math.nan if width is None else width
+    return np.ascontiguousarray(np.broadcast_to(np.asarray(width, dtype=float), shape)).ravel()
+
+
 def _prepare(x, y, a, c, nu, mu, profile):
     a_, c_, nu_, mu_ = (np.asarray(v, dtype=float) for v in (a, c, nu, mu))
     _validate(a_, c_, nu_, mu_)
@@ -168,7 +175,7 @@ def _cartesian(srr, sff, dev, X, Y):
 
 # -- stresses --------------------------------------------------------------------------------------
 
-def _stress_main(profile, closed, ords, comps, x, y, r, a, c, nu, mu):
+def _stress_main(profile, closed, ords, comps, x, y, r, a, c, nu, mu, w):
     """All requested components at points with r > 0."""
     n = r.size
     act = (mu > 0.0) & (c < a)
@@ -182,11 +189,11 @@ def _stress_main(profile, closed, ords, comps, x, y, r, a, c, nu, mu):
         if need_normal:
             szz, srr, sff, dev = normal.polar_closed(closed, r, a, nu)
         if ia.size and need_inplane:
-            v = tangential.inplane_closed(closed, x[ia], y[ia], r[ia], a[ia], c[ia], nu[ia], mu[ia])
+            v = tangential.inplane_closed(closed, x[ia], y[ia], r[ia], a[ia], c[ia], nu[ia], mu[ia], w[ia])
             for k, val in zip(("xx", "yy", "xy"), v):
                 tx[k][ia] = val
         if need_shear:
-            tx["xz"][ia] = tangential.shear_closed(closed, r[ia], a[ia], c[ia], mu[ia])
+            tx["xz"][ia] = tangential.shear_closed(closed, r[ia], a[ia], c[ia], mu[ia], w[ia])
     elif need_normal or need_shear:
         inside = r < a
         ii = np.flatnonzero(inside & (need_normal | act))
@@ -217,7 +224,7 @@ def _stress_main(profile, closed, ords, comps, x, y, r, a, c, nu, mu):
         if need_inplane:
             ip = np.flatnonzero(act & (r > c))
             if ip.size:
-                th_lo, th_hi = tangential.inplane_angles(r[ip], a[ip], c[ip])
+                th_lo, th_hi = tangential.inplane_angles(r[ip], a[ip], c[ip], w[ip])
                 P0, P2 = theta_moments(profile, r[ip], th_lo, th_hi, ords)
                 v = tangential.inplane_from_moments(x[ip], y[ip], r[ip], nu[ip], mu[ip], P0, P2)
                 for k, val in zip(("xx", "yy", "xy"), v):
@@ -232,7 +239,7 @@ def _stress_main(profile, closed, ords, comps, x, y, r, a, c, nu, mu):
     return res
 
 
-def _stress_origin(profile, closed, ords, a, c, nu, mu):
+def _stress_origin(profile, closed, ords, a, c, nu, mu, w):
     """Limits at r = 0 (see the module docstring)."""
     act = (mu > 0.0) & (c < a)
     gross = act & (c == 0.0)
@@ -259,14 +266,21 @@ def _stress_origin(profile, closed, ords, a, c, nu, mu):
     if np.any(act):
         if m0 > 0.0:
             lim = LI(np.where(act, c, a), a)
+            if closed is not None and closed[0] == "paraboloid":     # LI(c, a) with a - c = w (A109)
+                lim = np.where(tangential.thin(a, w), 2.0 * w / closed[1], lim)
         else:   # int_0^a g'(u)/u du diverges for a conical tip: only partial slip is finite
             part = act & (c > 0.0)
-            lim = np.where(part, LI(np.where(part, c, a), a), math.copysign(math.inf, B))
+            cone = closed is not None and closed[0] == "cone"
+            # the cone's B ln(a/c) as -B log1p(-w/a): no ratio next to 1 as c -> a
+            inner = LI(np.where(part, c, a), a)
+            if cone:
+                inner = np.where(tangential.thin(a, w), -B * np.log1p(-np.where(part, w, 0.0) / a), inner)
+            lim = np.where(part, inner, math.copysign(math.inf, B))
         xz = np.where(act, -mu / math.pi * lim, 0.0)
     return dict(xx=sxx, yy=syy, zz=szz, xy=sxy, xz=xz, yz=np.zeros_like(a))
 
 
-def _stress_chunk(profile, closed, ords, comps, x, y, a, c, nu, mu):
+def _stress_chunk(profile, closed, ords, comps, x, y, a, c, nu, mu, w):
     n = x.size
     r = np.hypot(x, y)
     finite = np.isfinite(r)
@@ -274,19 +288,20 @@ def _stress_chunk(profile, closed, ords, comps, x, y, a, c, nu, mu):
     main = np.flatnonzero(finite & (r > 0.0))
     if main.size:
         part = _stress_main(profile, closed, ords, comps, x[main], y[main], r[main], a[main], c[main],
-                            nu[main], mu[main])
+                            nu[main], mu[main], w[main])
         for k in comps:
             res[k][main] = part[k]
     zero = np.flatnonzero(r == 0.0)
     if zero.size:
-        part = _stress_origin(profile, closed, ords, a[zero], c[zero], nu[zero], mu[zero])
+        part = _stress_origin(profile, closed, ords, a[zero], c[zero], nu[zero], mu[zero], w[zero])
         for k in comps:
             res[k][zero] = part[k]
     return res
 
 
 @quiet
-def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method="closed", rtol=1e-10):
+def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method="closed", rtol=1e-10,
+                   width=None):
     """Surface (z = 0) stress tensor / E* under normal load and Cattaneo–Mindlin tangential load.
 
     Normal part eq. (9) (closed forms eq. 1, 36; flat punch eq. 3 times its depth) plus the
@@ -309,6 +324,10 @@ def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method
         always uses its closed forms).
     rtol : accuracy of the quadrature route, |error| <= rtol * max(1, |value|) in units of the
         mean pressure; 1e-14 <= rtol.
+    width : the slip annulus' width a - c where it is known more accurately than the difference of
+        the rounded radii (``profiles.annulus_width``, from the slip ratio); None: a - c.  The
+        closed forms of the cone and the paraboloid take it, so that as c -> a (fx -> 0) the
+        tangential part keeps its relative accuracy (docs/theory/axisymmetric.md (A109)).
 
     Returns
     -------
@@ -319,13 +338,14 @@ def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method
     ords = orders(rtol)
     closed = _route(profile, method)
     shape, (x, y, a, c, nu, mu) = _prepare(x, y, a, c, nu, mu, profile)
+    w = _width(width, shape)
     n = x.size
     out = {k: np.empty(n) for k in comps}
     step = _CHUNK if closed is None else _CLOSED_CHUNK
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         for s in range(0, n, step):
             sl = slice(s, s + step)
-            part = _stress_chunk(profile, closed, ords, comps, x[sl], y[sl], a[sl], c[sl], nu[sl], mu[sl])
+            part = _stress_chunk(profile, closed, ords, comps, x[sl], y[sl], a[sl], c[sl], nu[sl], mu[sl], w[sl])
             for k in comps:
                 out[k][sl] = part[k]
     return {k: out[k].reshape(shape) for k in comps}
@@ -333,13 +353,13 @@ def surface_stress(x, y, a, c, nu, mu, profile, *, components=COMPONENTS, method
 
 # -- pressure gradient -----------------------------------------------------------------------------
 
-def _dpdz_main(profile, closed, ords, x, r, a, c, nu, mu):
+def _dpdz_main(profile, closed, ords, x, r, a, c, nu, mu, w):
     act = (mu > 0.0) & (c < a)
     if closed is not None:
         v = normal.dpdz_closed(closed, r, a, nu)
         ia = np.flatnonzero(act)
         if ia.size:
-            v[ia] += tangential.dpdz_closed(closed, x[ia], r[ia], a[ia], c[ia], nu[ia], mu[ia])
+            v[ia] += tangential.dpdz_closed(closed, x[ia], r[ia], a[ia], c[ia], nu[ia], mu[ia], w[ia])
         return v
     v = normal.dpdz_quadrature(profile, r, a, nu, ords)
     ia = np.flatnonzero(act & (r <= a))
@@ -368,14 +388,14 @@ def _dpdz_origin(profile, closed, ords, a, c, nu, mu):
 
 
 @quiet
-def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10):
+def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10, width=None):
     """d p_h / dz at z = 0+ (z into the material), divided by E* (units 1/length).
 
     Normal part eq. (11) (stable forms docs/theory/axisymmetric.md (A26), (A85)-(A86): the by-parts
     form near the edge, the direct outside integral far from it; closed eq. 5, 37; flat punch regular
     part of eq. 6 times its depth) plus tangential part eq. (26) in the form (A87)-(A88) (closed 21,
     41; flat punch regular part of eq. 22).  Willert, Forsbach & Popov (see ``surface_stress`` for the
-    arguments).
+    arguments, ``width`` included).
 
     Infinite on r = c (stick side, +inf sgn x) and r = a (contact side, -inf sgn x) when a
     tangential load acts (0 there on x = 0), and at a conical tip r = 0 (-inf); NaN at r = 0 of a
@@ -385,6 +405,7 @@ def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10):
     ords = orders(rtol)
     closed = _route(profile, method)
     shape, (x, y, a, c, nu, mu) = _prepare(x, y, a, c, nu, mu, profile)
+    w = _width(width, shape)
     n = x.size
     out = np.full(n, np.nan)
     step = _CHUNK if closed is None else _CLOSED_CHUNK
@@ -397,7 +418,7 @@ def surface_dpdz(x, y, a, c, nu, mu, profile, *, method="closed", rtol=1e-10):
             main = np.flatnonzero(np.isfinite(r) & (r > 0.0))
             if main.size:
                 part[main] = _dpdz_main(profile, closed, ords, xs[main], r[main], a[sl][main], c[sl][main],
-                                        nu[sl][main], mu[sl][main])
+                                        nu[sl][main], mu[sl][main], w[sl][main])
             zero = np.flatnonzero(r == 0.0)
             if zero.size:
                 part[zero] = _dpdz_origin(profile, closed, ords, a[sl][zero], c[sl][zero], nu[sl][zero],

@@ -33,23 +33,72 @@ def _zero_where_x0(x, v):
     return np.where(x == 0.0, 0.0, v)
 
 
-def shear_closed(closed, r, a, c, mu):
+#: annulus widths w <= _THIN_WIDTH a take the forms of (A109); wider ones the plain differences of
+#: the rounded radii, which lose at most 1e-16 a/w (1e-13) there, so that their values stay bit for bit
+_THIN_WIDTH = 1e-3
+
+
+def thin(a, w):
+    """Where the slip annulus' width ``w`` (None: not known) is thin, w <= ``_THIN_WIDTH`` a."""
+    return np.zeros(np.shape(a), dtype=bool) if w is None else (w <= _THIN_WIDTH * a)
+
+
+def _width(a, c, w):
+    """The slip annulus' width a - c: ``w`` (from the exact slip ratio, ``profiles.annulus_width``)
+    where the annulus is thin, else the difference of the rounded radii."""
+    return a - c if w is None else np.where(thin(a, w), w, a - c)
+
+
+def _near(r, a, w):
+    """Points where the offsets of (A109) apply: a thin annulus and r >= a/2 (a - r exact there,
+    Sterbenz; nearer the centre a - r would carry 1e-16 a into c - r without need)."""
+    return thin(a, w) & (r >= 0.5 * a)
+
+
+def _stick_root(r, a, c, w):
+    """sqrt(c^2 - r^2) (0 for r >= c), with c - r = (a - r) - w at ``_near`` points: next to a thin
+    slip annulus the rounding of c (1e-16 a) is not magnified by 1/(c - r)
+    (docs/theory/axisymmetric.md (A109))."""
+    plain = sqrt_diff(c, r)
+    if w is None:
+        return plain
+    return np.where(_near(r, a, w), np.sqrt(np.maximum(((a - r) - w) * (c + r), 0.0)), plain)
+
+
+def _slip_difference(r, a, c, w):
+    """r - c, as (r - a) + w at ``_near`` points (``_stick_root``)."""
+    return r - c if w is None else np.where(_near(r, a, w), (r - a) + w, r - c)
+
+
+def _slip_root(r, a, c, w):
+    """sqrt(r^2 - c^2) (0 for r <= c), with ``_slip_difference``."""
+    if w is None:
+        return sqrt_diff(r, np.minimum(r, c))
+    return np.sqrt(np.maximum(_slip_difference(r, a, c, w) * (r + c), 0.0))
+
+
+def shear_closed(closed, r, a, c, mu, w=None):
     """sigma_xz / E*: cone eq. (39), paraboloid eq. (14) with the stick-zone difference, flat punch
-    eq. (18) (sliding; its stick radius plays no role)."""
+    eq. (18) (sliding; its stick radius plays no role).  ``w``: the annulus width a - c where known
+    more accurately than from the rounded c (``_width``)."""
     kind = closed[0]
-    sa, sc = sqrt_diff(a, r), sqrt_diff(c, r)
+    sa, sc = sqrt_diff(a, r), _stick_root(r, a, c, w)
+    wd = _width(a, c, w)
     with _err():
         if kind == "cone":
             p0 = 0.5 * closed[1]
             stick = r <= c
             # ln((a + sqrt(a^2-r^2)) / (c + sqrt(c^2-r^2))): no difference of two arccosh (A36)
             v_stick = np.log((a + sa) / np.where(stick, c + sc, 1.0))
+            # thin annulus: log1p((a - c + sa - sc)/(c + sc)), sa - sc = (a - c)(a + c)/(sa + sc) (A109)
+            v_stick = np.where(thin(a, w), np.log1p((wd + wd * (a + c) / (sa + sc)) / np.where(stick, c + sc, 1.0)),
+                               v_stick)
             v_slip = arccosh_ratio(a, np.minimum(r, a))
             return np.where(r <= a, -mu * p0 * np.where(stick, v_stick, v_slip), 0.0)
         if kind == "paraboloid":
             P = 2.0 / (math.pi * closed[1])
             # stick zone: sa - sc = (a - c)(a + c)/(sa + sc), no cancellation as c -> a (A99)
-            v = np.where(r <= c, (a - c) * (a + c) / (sa + sc), sa)
+            v = np.where(r <= c, wd * (a + c) / (sa + sc), sa)
             return -mu * P * np.where(r <= a, v, 0.0)
         if kind == "flat_punch":
             return np.where(r <= a, -mu * closed[2] / (math.pi * sa), 0.0)
@@ -80,27 +129,28 @@ def _cone_e3(A, Cc, a, c, r, outside):
 _HK_NODES, _HK_WEIGHTS = (v.copy() for v in gauss_legendre(12))
 
 
-def _hertz_angles(r, a, c):
+def _hertz_angles(r, a, c, w=None):
     """(theta_c, theta_a - theta_c) with theta_b = arcsin(min(r, b)/r): the difference from
     sin(theta_a - theta_c) = (a - c)(a + c)/(a s_c + c s_a) and cos = (s_a s_c + a c)/r^2 (s_b =
     sqrt(r^2 - b^2), 0 inside), so that a - c, exact in floating point near c = a, carries it
     (docs/theory/axisymmetric.md (A100))."""
-    sa, sc = sqrt_diff(r, np.minimum(r, a)), sqrt_diff(r, np.minimum(r, c))
+    sa, sc = sqrt_diff(r, np.minimum(r, a)), _slip_root(r, a, c, w)
+    wd = _width(a, c, w)
     th_c = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, sc))
     # r <= c: empty; c < r <= a: arccos(c/r); r > a: the difference of the two arcsines
     slip = np.arctan2(sc, c)
     with np.errstate(invalid="ignore", divide="ignore"):
-        outer = np.arctan2(r * r * ((a - c) * (a + c) / (a * sc + c * sa)), sa * sc + a * c)
+        outer = np.arctan2(r * r * (wd * (a + c) / (a * sc + c * sa)), sa * sc + a * c)
     delta = np.where(r <= c, 0.0, np.where(r <= a, slip, outer))
     return th_c, delta
 
 
-def _hertz_hk(r, a, c):
+def _hertz_hk(r, a, c, w=None):
     """H / r^4 = 2 int sin^4 t dt and K / r^4 = 2 int sin^2 t cos^2 t dt over [theta_c, theta_a],
     with F / r^2 = H + K of eqs. (16)-(17) (A49) and the difference a - c
     (docs/theory/axisymmetric.md (A101)): one Gauss–Legendre rule on the interval itself, so that
     neither the far field nor c -> a cancels."""
-    th_c, delta = _hertz_angles(r, a, c)
+    th_c, delta = _hertz_angles(r, a, c, w)
     t = th_c[..., None] + delta[..., None] * _HK_NODES
     s2 = np.sin(t) ** 2
     w = 2.0 * delta[..., None] * _HK_WEIGHTS
@@ -109,10 +159,10 @@ def _hertz_hk(r, a, c):
     return H, K
 
 
-def inplane_closed(closed, x, y, r, a, c, nu, mu):
+def inplane_closed(closed, x, y, r, a, c, nu, mu, w=None):
     """(sxx, syy, sxy) / E* of the tangential load: cone eq. (40), paraboloid eqs. (15)-(17) (in the
     positive-term form (A101), its moments by a rule exact to rounding), flat punch eq. (19).  Zero
-    in the stick zone r <= c."""
+    in the stick zone r <= c.  ``w`` as ``shear_closed``."""
     kind = closed[0]
     X, Y = x / r, y / r
     X2, Y2 = X * X, Y * Y
@@ -124,8 +174,12 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu):
             # r = 1.5e-154 a, and C = sqrt_diff(r, c)/r then dropped the gross-slip (c = 0, C = 1) part
             A = np.where(outside, _root_ratio(r, a), 0.0)
             Cc = _root_ratio(r, c)
+            if w is not None:   # as _root_ratio, with r - c from the annulus width (A109)
+                Cc = np.where(_near(r, a, w), np.sqrt(np.maximum((_slip_difference(r, a, c, w) / r) * ((r + c) / r),
+                                                                 0.0)), Cc)
+            wd = _width(a, c, w)
             # C - A without cancellation far outside: ((a^2 - c^2)/r^2) / (A + C), docs/theory/axisymmetric.md (A90)
-            D1 = np.where(outside, ((a - c) / r) * ((a + c) / r) / (A + Cc), Cc)
+            D1 = np.where(outside, (wd / r) * ((a + c) / r) / (A + Cc), Cc)
             # A^3 - C^3 = -D1 (3 - E3): the brackets of eq. (40) are written with E3 = 3 - A^2 - AC - C^2,
             # formed without cancellation (A96), so that their O(1) parts cancel exactly (by algebra, not
             # in rounding: sigma_yy at nu = 1/2, r = 1e6 a was 1.3e-5 relative off) and what remains is O(a^2/r^2)
@@ -135,7 +189,7 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu):
             syy = -2.0 * nu * k * X * D1 * (3.0 * Y2 + (1.0 - 4.0 * Y2) / 3.0 * E3)
             sxy = k * Y * D1 * (-(1.0 - 2.0 * nu) - 6.0 * nu * X2 + 2.0 * nu / 3.0 * (4.0 * X2 - 1.0) * E3)
         elif kind == "paraboloid":
-            H, K = _hertz_hk(r, a, c)
+            H, K = _hertz_hk(r, a, c, w)
             k = mu / (math.pi * closed[1])
             # eqs. (15)-(17) with F = H + K: every bracket a sum of non-negative terms (A101)
             sxx = -2.0 * k * x * ((1.0 + nu * Y2) * H + ((1.0 + nu) - 3.0 * nu * Y2) * K)
@@ -159,12 +213,13 @@ def inplane_closed(closed, x, y, r, a, c, nu, mu):
     return (np.where(stick, 0.0, sxx), np.where(stick, 0.0, syy), np.where(stick, 0.0, sxy))
 
 
-def dpdz_closed(closed, x, r, a, c, nu, mu):
+def dpdz_closed(closed, x, r, a, c, nu, mu, w=None):
     """Tangential d p_h/dz / E*: cone eq. (41), paraboloid eq. (21) with the stick-zone difference,
     flat punch regular part of eq. (22).  +-inf on r = c (stick side) and r = a (contact side),
-    with the sign of x; 0 there on x = 0 (radial limit)."""
+    with the sign of x; 0 there on x = 0 (radial limit).  ``w`` as ``shear_closed``."""
     kind = closed[0]
-    sa, sc = sqrt_diff(a, r), sqrt_diff(c, r)
+    sa, sc = sqrt_diff(a, r), _stick_root(r, a, c, w)
+    wd = _width(a, c, w)
     C2 = 2.0 * (1.0 + nu) / 3.0
     inside, stick = r <= a, r <= c
     with _err():
@@ -172,12 +227,14 @@ def dpdz_closed(closed, x, r, a, c, nu, mu):
             k = C2 * mu * 0.5 * closed[1]
             # (a/sqrt(a^2-r^2) - c/sqrt(c^2-r^2)) / r^2 = 1/(sa(a+sa)) - 1/(sc(c+sc)), docs/theory/axisymmetric.md (A89)
             v_stick = -k * x * (1.0 / (sa * (a + sa)) - 1.0 / (sc * (c + sc)))
+            # thin annulus: = -(a^2 - c^2)/(sa sc (a sc + c sa)), the difference written out (A109)
+            v_stick = np.where(thin(a, w), k * x * (wd * (a + c)) / (sa * sc * (a * sc + c * sa)), v_stick)
             v_slip = -k * (x / r) * (a / r) / sa   # not x a / (r^2 sa): r^2 underflows at r = 1e-300
             v = np.where(stick, v_stick, np.where(inside, v_slip, 0.0))
         elif kind == "paraboloid":
             k = 2.0 * C2 * mu / (math.pi * closed[1])
             # stick zone: 1/sa - 1/sc = -(a - c)(a + c)/(sa sc (sa + sc)), no cancellation as c -> a (A100)
-            v_stick = np.where(c == a, 0.0, -(a - c) * (a + c) / (sa * sc * (sa + sc)))
+            v_stick = np.where(c == a, 0.0, -wd * (a + c) / (sa * sc * (sa + sc)))
             v = -k * x * np.where(stick, v_stick, np.where(inside, 1.0 / sa, 0.0))
         elif kind == "flat_punch":
             v = np.where(inside, C2 * mu * closed[2] * x / (math.pi * sa ** 3), 0.0)
@@ -194,10 +251,11 @@ def shear_from_integrals(r, a, mu, G_slip):
     return np.where(r <= a, -mu / math.pi * G_slip, 0.0)
 
 
-def inplane_angles(r, a, c):
-    """Integration limits of eq. (25) in t (u = r sin t): [arcsin(min(r,c)/r), arcsin(min(r,a)/r)]."""
+def inplane_angles(r, a, c, w=None):
+    """Integration limits of eq. (25) in t (u = r sin t): [arcsin(min(r,c)/r), arcsin(min(r,a)/r)];
+    ``w`` as ``shear_closed`` (sqrt(r^2 - c^2) from the annulus width, (A109))."""
     th_hi = np.where(r <= a, 0.5 * math.pi, np.arctan2(a, sqrt_diff(r, a)))
-    th_lo = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, sqrt_diff(r, c)))
+    th_lo = np.where(r <= c, 0.5 * math.pi, np.arctan2(c, _slip_root(r, a, c, w)))
     return th_lo, th_hi
 
 
