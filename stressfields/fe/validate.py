@@ -146,8 +146,8 @@ def _plan(base, table: Table, frame: Frame, options: Options) -> _Plan:
     values = []
     for c in frame.values:
         written = written_name(c.label)
-        if c.name not in fields and written in fields and not frame.cylindrical:
-            c = replace(c, name=written)        # a scenario's own name (the wavy field's uz, not u_z)
+        if written in fields and written != c.name and not frame.cylindrical:
+            c = replace(c, name=written)        # a scenario's own name as written (the wavy field's uz, not u_z)
         if options.variables and c.name not in options.variables:
             continue            # a column not asked for is not checked (an FE file holds many)
         cart = CYLINDRICAL.get(c.name, c.name) if frame.cylindrical else c.name
