@@ -80,7 +80,9 @@ def _inline(d: dict) -> str:
                                                                      "--chunks", "x=abc"],
     ["run", "recipes/cone_fig2_sigma_xx.toml", "--chunks", "x=0"],
     ["run", "recipes/cone_fig2_sigma_xx.toml", "recipes/cone_fig3_von_mises.toml", "-o", "x.nc"],
-    ["run", "recipes/cone_fig2_sigma_xx.toml", "--scheduler", "tcp://127.0.0.1:1"],
+    # waits out the connection timeout (10 s): with the fault-injection tests
+    pytest.param(["run", "recipes/cone_fig2_sigma_xx.toml", "--scheduler", "tcp://127.0.0.1:1"],
+                 marks=pytest.mark.slow),
 ])
 def test_bad_command_lines_exit_2(argv, tmp_path, monkeypatch, capsys):
     import os

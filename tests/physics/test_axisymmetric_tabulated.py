@@ -128,6 +128,7 @@ def _case(name):
     return prof, a, c, x, y, ref
 
 
+@pytest.mark.slow   # dense references near every knot, ~25 s
 @pytest.mark.parametrize("name", list(CASES))
 def test_dpdz_meets_rtol_near_knots(name):
     prof, a, c, x, y, ref = _case(name)
@@ -180,6 +181,7 @@ def test_abel_derivatives_against_quadrature_of_the_spline(table):
     assert float(prof.d2g(0.0)) == float(prof._sums(0.0, 2))
 
 
+@pytest.mark.slow   # dense references near every knot, ~25 s
 @pytest.mark.parametrize("ux0", [0.0, 0.25], ids=["normal", "partial_slip"])
 def test_dpdz_within_relative_1e12_of_knots(ux0):
     """|error| <= rtol max(|value|, p_m/a) at rtol 1e-8 ... 1e-12 for points 1e-6 and 1e-12 (relative)

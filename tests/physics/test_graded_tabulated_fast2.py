@@ -17,6 +17,10 @@ from stressfields.physics.graded import normal as N
 from stressfields.physics.graded import profiles as P
 from stressfields.physics.graded.material import c_N_star
 
+# reference quadratures of the defining integrals take ~25 s of set-up: run by .ci/run with the
+# other slow tests, not by the Quick start
+pytestmark = pytest.mark.slow
+
 A = 0.6
 MAT = dict(nu=0.3, E0=2.0e9, c0=1.0e-3)
 RTOLS = (1e-6, 1e-8, 1e-10, 1e-12)

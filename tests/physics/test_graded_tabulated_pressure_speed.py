@@ -17,6 +17,10 @@ from stressfields.physics.graded.material import c_N_star
 
 from test_graded_tabulated_fast2 import A, KS, MAT, RTOLS, hyperboloid, rel
 
+# reference quadratures of the defining integral take ~15 s of set-up: run by .ci/run with the
+# other slow tests, not by the Quick start
+pytestmark = pytest.mark.slow
+
 RHO = np.array([0.0, 1e-9, 0.05, 0.5, 0.99, 1.0 - 1e-9])
 
 

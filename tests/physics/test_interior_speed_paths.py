@@ -95,6 +95,7 @@ def _agree(ref, v, err, i, pm):
     assert max(abs(ref[c][i] - v[j]) for j, c in enumerate(COMPONENTS)) <= 2e-13 * scale, i
 
 
+@pytest.mark.slow   # QUADPACK references, ~15 s
 @pytest.mark.parametrize("name", sorted(PROFILES))
 def test_fine_rule_against_quadpack(name):
     P = PROFILES[name]

@@ -141,6 +141,7 @@ def _scale(kind, r, pm):
             "D": pm / A, "F": r * pm / A, "H": pm / (A * r)}[kind]
 
 
+@pytest.mark.slow   # adaptive-quadrature references, ~16 s
 @pytest.mark.parametrize("rtol", RTOLS)
 @pytest.mark.parametrize("name", list(SHAPES))
 def test_integrals_against_adaptive_quadrature(name, rtol):
