@@ -15,7 +15,6 @@ import shutil
 import socket
 import sys
 import tempfile
-import threading
 import zlib
 from concurrent.futures import ThreadPoolExecutor
 from contextlib import nullcontext
@@ -24,6 +23,7 @@ from pathlib import Path
 import netCDF4
 import numpy as np
 import xarray as xr
+from xarray.backends.locks import HDF5_LOCK, NETCDFC_LOCK, combine_locks
 
 from .errors import OutputError
 from .hashing import slabs, stamp
@@ -232,7 +232,7 @@ class open_values:
     copies them once more and holds them (a 3.6e7-point run of eleven fields in chunks: 16.0 s wall,
     8-9 s of system time and 1.28 GB peak memory with netCDF's default caches, measured).
 
-    Every write and the closing hold one lock (HDF5 is not thread safe), and a write after the
+    Every write and the closing hold xarray's NetCDF/HDF5 lock (HDF5 is not thread safe), and a write after the
     closing is refused: after an interrupt the main thread closes the file while a worker thread may
     still be writing a block (closing under it crashed the process: 3 of 40 runs given SIGHUP).
     """
@@ -243,7 +243,10 @@ class open_values:
         for var in self.nc.variables.values():
             if var.chunking() != "contiguous":
                 var.set_var_chunk_cache(size=0)
-        self.lock = threading.Lock()
+        # xarray's own NetCDF/HDF5 lock, not one of ours: a dataset read lazily from NetCDF files
+        # (sf.open_mfdataset, then sf.write) is read by xarray in the same tasks that write here, and
+        # HDF5 reads under xarray's lock beside writes under another gave "NetCDF: HDF error" and crashes
+        self.lock = combine_locks([NETCDFC_LOCK, HDF5_LOCK])
         self.closed = False
 
     def __getitem__(self, name: str):
