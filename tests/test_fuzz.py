@@ -62,6 +62,7 @@ def _run(argv, folder, capsys):
     return code
 
 
+@pytest.mark.slow   # ~6 s of fuzzed files; the property tests of bad input stay
 @fast(1200)
 @given(text=recipe_texts())
 def test_hostile_recipe_files(text, tmp_path_factory, capsys):

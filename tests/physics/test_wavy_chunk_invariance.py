@@ -109,6 +109,7 @@ def test_scenario_values_do_not_depend_on_the_chunking(method):
         xr.testing.assert_identical(_computed(recipe, chunks), whole)
 
 
+@pytest.mark.slow   # ~4.5 s; the normalised chunk tests stay
 def test_physical_and_scattered_points_do_not_depend_on_the_chunking():
     """Physical units (x in metres: the contact is |x| <= a lambda_1/2) and a [points] table."""
     physical = {"scenario": "wavy", "method": {"rtol": 1e-8},
