@@ -32,16 +32,10 @@ def options_from(args) -> Options:
                    h=h)
 
 
-def run(args) -> int:
+def run(args, plotting: bool) -> int:
     """The command: the report folder is checked before anything is computed and published whole
-    (`comparison.publish_report`). On dask's threaded scheduler, without dask.distributed (`cli`)."""
-    from ..cli import _local_scheduler
-
-    with _local_scheduler("threads"):
-        return _run(args)
-
-
-def _run(args) -> int:
+    (`comparison.publish_report`); ``plotting``: the PNGs are drawn (not --no-plot, and matplotlib is
+    installed: cli.py decides, and runs this on dask's local threads)."""
     from ..comparison import check_report_folder, publish_report
     from ..textfiles import write_text
     from ..writers import write
@@ -52,7 +46,6 @@ def _run(args) -> int:
         raise CompareError(f"--h gives {len(options.h)} sizes for {len(files)} files")
     out = args.report_dir
     check_report_folder(out, overwrite=args.overwrite)
-    plotting = not args.no_plot and _has_matplotlib()
     if not plotting and not args.no_plot:
         print("note: no comparison.png: matplotlib is not installed (pip install 'stressfields[plot]')",
               file=sys.stderr)
@@ -96,10 +89,4 @@ def _run(args) -> int:
     print(f"{result}; report in {out}")
     sys.stdout.flush()
     return 1 if result == "FAIL" else 0
-
-
-def _has_matplotlib() -> bool:
-    import importlib.util
-
-    return importlib.util.find_spec("matplotlib") is not None
 
