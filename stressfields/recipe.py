@@ -54,7 +54,7 @@ from .pointfiles import MAX_SWEEP, file_label, read_points_file
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Parameter, Scenario
 from .options import output_option_problems
-from .units import allowed as allowed_units, factor as unit_factor, show_unit
+from .units import NOT_PARAMETERS, allowed as allowed_units, canonical, factor as unit_factor, show_unit
 
 TOP_KEYS = ("scenario", "title", "parameters", "points", "output", "method", "plot", "splits", "compare")
 #: the dimension along which the [points] columns vary together (last, after the swept ones)
@@ -480,11 +480,9 @@ def _points_table(data: dict, declared: dict, params: dict, scen: Scenario, base
 def _parameter_columns(columns, scen) -> list:
     """The columns of a points file that can be parameters, named as the scenario names them: a file
     `compare` reads serves as a points file too (FE header forms such as ``X(mm)`` or ``Node Label``
-    read by `fe.formats.canonical`), its node ids, quadrature weights, body and value columns left
+    read by `units.canonical`), its node ids, quadrature weights, body and value columns left
     out. Any other name stays, for the recipe checker to refuse."""
     from dataclasses import replace
-
-    from .fe.formats import NOT_PARAMETERS, canonical
 
     declared = {p.name for p in scen.parameters}
     fields = {v.name for v in scen.variables}

@@ -121,3 +121,60 @@ def _convert(unit: str, target: str, label: str, given: str) -> float:
         raise UnitProblem(f"column {label!r}: unit {show_unit(given)} is not a unit pint knows; "
                           f"expected {expected}") from None
     return float(value)
+
+
+# -- the header forms FE exports write (node files of `compare` and `[points]` files alike) --------
+
+#: header names (lower case, spaces and hyphens as _) -> canonical column names
+ALIASES = {
+    **dict.fromkeys(("node", "node_label", "nodelabel", "nodeid", "node_id", "id", "node_number", "nid"), "node"),
+    **dict.fromkeys(("weight", "weights", "quadrature_weight", "volume", "cell_volume", "ivol", "w"), "weight"),
+    "coord_coor1": "x", "coord_coor2": "y", "coord_coor3": "z", "coor1": "x", "coor2": "y", "coor3": "z",
+    "radius": "r",
+    **{f"{p}{i}{j}": f"sigma_{'xyz'[int(i) - 1]}{'xyz'[int(j) - 1]}" for p in ("s_s", "s") for i, j in
+       (("1", "1"), ("2", "2"), ("3", "3"), ("1", "2"), ("1", "3"), ("2", "3"))},
+    **{f"{p}{i}": f"u_{'xyz'[int(i) - 1]}" for p in ("u_u", "u") for i in "123"},
+    "s_mises": "von_mises", "mises": "von_mises", "tresca": None,
+}
+#: cylindrical index spellings -> one letter (t for theta)
+_INDEX = {"theta": "t", "th": "t", "t": "t", "r": "r", "z": "z", "x": "x", "y": "y"}
+_COMPONENT = re.compile(r"^(sigma|s|u|tau)_?((?:theta|th|[rtxyz]))((?:theta|th|[rtxyz]))?$")
+_HEADER = re.compile(r"^\s*\"?\s*(?P<name>[^\[\]()\"]*?)\s*(?:[\[(]\s*(?P<unit>[^\])]*?)\s*[\])])?\s*\"?\s*$")
+
+def canonical(header: str) -> tuple[str, str | None]:
+    """(canonical name, unit or None) of a header: ``X[mm]``, ``x(mm)``, ``Node Label``, ``S-S11``,
+    ``sigma_thetatheta [MPa]``, ``sigma_zr``."""
+    match = _HEADER.match(header)
+    unit = match.group("unit") if match else None
+    written = written_name(header)
+    name = written.lower()
+    if name in ALIASES and ALIASES[name]:
+        return ALIASES[name], unit or None
+    if name in ("x", "y", "z", "r"):
+        return name, unit or None
+    comp = _COMPONENT.match(name)
+    if comp and (comp.group(1) == "u") == (comp.group(3) is None):
+        i = _INDEX[comp.group(2)]
+        if comp.group(1) == "u":
+            return f"u_{i}", unit or None
+        j = _INDEX[comp.group(3)]
+        if "rt".find(i) >= 0 or "rt".find(j) >= 0 or {i, j} == {"z"}:
+            order = "rtz"
+        else:
+            order = "xyz"
+        if i in order and j in order and order.index(i) > order.index(j):
+            i, j = j, i
+        return f"sigma_{i}{j}", unit or None
+    return written, unit or None            # as written: a parameter such as R or E keeps its case
+
+
+def written_name(header: str) -> str:
+    """A header's name as written, without its unit (spaces, hyphens, dots as _): ``uz[um]`` -> ``uz``,
+    the name a scenario may declare where `canonical` says ``u_z``."""
+    match = _HEADER.match(header)
+    raw = match.group("name") if match else header
+    return re.sub(r"[\s\-.:/]+", "_", raw.strip()).strip("_")
+
+
+#: columns of an FE export that are not parameters: a [points] file may carry them, unused
+NOT_PARAMETERS = ("node", "weight", "body")

@@ -14,14 +14,15 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 import xarray as xr
 
+from .. import cf
 from ..comparison import Column as RefColumn
 from ..comparison import CompareError, _derived_recipe, _recipe, _reference, _scale_spec, _scale_value
-from ..recipe import POINT
-from . import stats as st
-from .formats import FormatProblem, Table, read_nodes, user_table, written_name
-from .frames import BODY2_FLIP, CYLINDRICAL, NEEDS, Frame, FrameProblem, rotate_reference, to_depth_frame
-from .. import cf
 from ..errors import name_problem
+from ..recipe import POINT
+from ..units import written_name
+from . import stats as st
+from .formats import FormatProblem, Table, read_nodes, user_table
+from .frames import BODY2_FLIP, CYLINDRICAL, NEEDS, Frame, FrameProblem, rotate_reference, to_depth_frame
 from .units import UnitProblem, compare_table_problem, factor, parse_unit_option, unit_from_option
 
 #: `--scale` choices: user stresses divided by one of these
