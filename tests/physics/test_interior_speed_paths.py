@@ -19,6 +19,7 @@ from scipy.integrate import quad_vec
 
 from stressfields.physics import axisymmetric as ax
 from stressfields.physics.axisymmetric import interior as I
+from stressfields.physics.axisymmetric import superposition as S
 from stressfields.physics.axisymmetric.interior_hertz import COMPONENTS, punch_radial, punch_unit, sliding_punch_unit
 from stressfields.physics.axisymmetric.interior_tangential import _integrate_sliding, interior_stress_tangential
 
@@ -46,15 +47,15 @@ def _pm(profile):
 
 
 def _fine_rule(profile, kernel, lower=None):
-    """The reference: the panel rule of ``interior._superpose`` (I16)-(I17) with the Cartesian
+    """The reference: the panel rule of ``superposition.superpose`` (I16)-(I17) with the Cartesian
     punches (I10)-(I14), (I30)-(I32) at every node and 32 nodes per panel, ratio 1.6 (the rule
     the table of ``interior_orders`` was measured against), itself held against QUADPACK below."""
-    saved = I._ORDERS
-    I._ORDERS = ((1e-12, (32, 1.6)),)
+    saved = S._ORDERS
+    S._ORDERS = ((1e-12, (32, 1.6)),)
     try:
-        return I._superpose(X, Y, _Z, np.ones(_R.size), np.full(_R.size, NU), profile, 1e-12, kernel, lower=lower)
+        return S.superpose(X, Y, _Z, np.ones(_R.size), np.full(_R.size, NU), profile, 1e-12, kernel, lower=lower)
     finally:
-        I._ORDERS = saved
+        S._ORDERS = saved
 
 
 @functools.lru_cache(maxsize=None)
@@ -126,8 +127,8 @@ def test_punch_radial_equals_the_cartesian_punch():
     x, y = 0.6 * r, 0.8 * r
     ref = punch_unit(x, y, z, NU, rm1=r - 1.0)
     sigma, zz, e, t = punch_radial(r, z, r - 1.0, NU)
-    ux, uy = I._direction(x, y, r)
-    new = I._radial_cartesian(ux, uy, sigma, zz, e * r * r, t * r)
+    ux, uy = S.direction(x, y, r)
+    new = S.radial_cartesian(ux, uy, sigma, zz, e * r * r, t * r)
     largest = np.max([np.abs(ref[c]) for c in COMPONENTS], axis=0)
     for c in COMPONENTS:
         assert np.all(np.abs(new[c] - ref[c]) <= 1e-13 * largest), c
@@ -151,10 +152,10 @@ def test_partial_slip_flat_rule_against_quadpack(rtol):
 
 def _node_counts(profile, rtol, lower):
     """(nodes of the flat rule (I54), nodes of the panel rule (I16)-(I17)) over the test points."""
-    n, q = I.interior_orders(rtol)
+    n, q = S.interior_orders(rtol)
     a, nu = np.ones(_R.size), np.full(_R.size, NU)
-    flat = I._flat_nodes(X, Y, _Z, a, nu, profile, n, q, rtol, lower)
-    rho_s, offsets = I._breakpoints(_R, _Z, a, profile, q, lower)
+    flat = S._flat_nodes(X, Y, _Z, a, nu, profile, n, q, rtol, lower)
+    rho_s, offsets = S._breakpoints(_R, _Z, a, profile, q, lower)
     panels = int(np.sum(np.diff(offsets, axis=1) > 0.0))
     return flat.row.size, panels * n + int(np.sum(~(lower > 0.0))) * (n + 4)
 

@@ -16,8 +16,9 @@ import pytest
 from scipy.integrate import quad
 
 from stressfields.physics import axisymmetric as ax
-from stressfields.physics.axisymmetric.interior_hertz import (_geometry, _sliding_cartesian, _sliding_scalars,
-                                                             sliding_punch_unit, sliding_unit)
+from stressfields.physics.axisymmetric.hertz_geometry import geometry
+from stressfields.physics.axisymmetric.interior_hertz import (_sliding_cartesian, sliding_punch_unit, sliding_scalars,
+                                                             sliding_unit)
 from stressfields.physics.axisymmetric.interior_tangential import interior_stress_tangential
 from stressfields.physics.axisymmetric.surface import surface_stress
 
@@ -107,8 +108,8 @@ def _axis_xz(z):
 
 def _longdouble(x, y, z):
     x, y, z = (np.asarray(v, dtype=np.longdouble) for v in (x, y, z))
-    g = _geometry(x, y, z)
-    return _sliding_cartesian(x, y, z, np.longdouble(NU), _sliding_scalars(g), g["N"])
+    g = geometry(x, y, z)
+    return _sliding_cartesian(x, y, z, np.longdouble(NU), sliding_scalars(g), g["N"])
 
 
 @pytest.mark.parametrize("r", [0.0, 1e-16, 1e-8])

@@ -15,7 +15,7 @@ Routes (docs/theory/interior.md (I36)-(I44)):
   edges included (where a component passes through zero: of the largest of its terms).
 * ``quadrature``: every other profile (and the paraboloid with method="quadrature") as the
   superposition of punches (I42) and of sliding punches (I43), on the panels of the stresses'
-  1-D route (``interior._superpose``); on the surface inside the range of integration the panel
+  1-D route (``interior.superpose``); on the surface inside the range of integration the panel
   rule (I44).  Accuracy: |error| <= rtol * max(|value|, delta) (the displacement scale is delta).
 
 The displacement is the unique one that vanishes at infinity; every value is finite, the edge
@@ -29,9 +29,10 @@ import numpy as np
 from ..flags import quiet
 
 from ..quadrature import gauss_jacobi, gauss_legendre, group_by
-from .interior import _live, _Nodes, _superpose, check_arguments, flat_arguments, interior_orders
-from .interior_hertz import _geometry, _one_minus_m_atan, _sliding_scalars, _x_minus_sin
+from .hertz_geometry import geometry, one_minus_m_atan, x_minus_sin
+from .interior_hertz import sliding_scalars
 from .profiles import Profile
+from .superposition import Nodes, check_arguments, flat_arguments, interior_orders, live_nodes, superpose
 
 __all__ = ["NAMES", "displacements", "tangential_displacements", "has_displacement_closed_form",
            "punch_displacement_unit", "sliding_punch_displacement_unit",
@@ -57,7 +58,7 @@ def _over_s(S, M, N):
 def _unit_coords(x, y, z, rm1):
     # float64, or np.longdouble if given (the tests' extended-precision reference)
     x, y, z = np.broadcast_arrays(*(np.asarray(v) + np.zeros((), np.result_type(v, np.float64)) for v in (x, y, z)))
-    return x, y, _geometry(x, y, z, rm1)
+    return x, y, geometry(x, y, z, rm1)
 
 
 def punch_displacement_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
@@ -65,7 +66,7 @@ def punch_displacement_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
     coordinates divided by the radius: docs/theory/interior.md (I37) (Boussinesq potentials of
     the pressure 1/(pi sqrt(1 - r^2)) per E*), u_z = 1 under the punch.  No division by r; finite
     and continuous everywhere, the edge ring included.  Closed form: relative error at most 1e-12
-    of |value| everywhere.  ``rm1``: r - 1 without rounding (see ``interior_hertz._geometry``)."""
+    of |value| everywhere.  ``rm1``: r - 1 without rounding (see ``interior_hertz.geometry``)."""
     x, y, g = _unit_coords(x, y, z, rm1)
     nu = np.asarray(nu, dtype=x.dtype)
     M, N = g["M"], g["N"]
@@ -119,10 +120,10 @@ def hertz_displacement_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     M, N, W, z = g["M"], g["N"], g["W"], g["z"]
     opm = 1.0 + M * M
     phi = np.arctan2(1.0, M)
-    t20 = 0.5 * _x_minus_sin(2.0 * phi, 2.0 * M / opm)
+    t20 = 0.5 * x_minus_sin(2.0 * phi, 2.0 * M / opm)
     enclosed = 2.0 * (1.0 + N + N * N) / (W * (1.0 + N))       # (1 - N^3)/r^2, (I7a)
     ur_r = -(2.0 * (1.0 - 2.0 * nu) / (3.0 * math.pi * (1.0 - nu))) * enclosed + (2.0 / math.pi) * z * t20
-    uz = (2.0 / math.pi) * (phi - 0.5 * g["r2"] * t20 + nu / (1.0 - nu) * z * N * _one_minus_m_atan(M))
+    uz = (2.0 / math.pi) * (phi - 0.5 * g["r2"] * t20 + nu / (1.0 - nu) * z * N * one_minus_m_atan(M))
     return {"x": x * ur_r, "y": y * ur_r, "z": uz}
 
 
@@ -132,12 +133,12 @@ def _hertz_sliding_radial(g):
     M, N, W, z, r2 = g["M"], g["N"], g["W"], g["z"], g["r2"]
     opm = 1.0 + M * M
     phi = np.arctan2(1.0, M)
-    t20 = 0.5 * _x_minus_sin(2.0 * phi, 2.0 * M / opm)
-    t31 = _x_minus_sin(4.0 * phi, 4.0 * M * (M * M - 1.0) / (opm * opm)) / 16.0
+    t20 = 0.5 * x_minus_sin(2.0 * phi, 2.0 * M / opm)
+    t31 = x_minus_sin(4.0 * phi, 4.0 * M * (M * M - 1.0) / (opm * opm)) / 16.0
     zt20 = z * t20
-    s = _sliding_scalars(g)
+    s = sliding_scalars(g)
     return dict(
-        Phi=math.pi * (phi - z * N * _one_minus_m_atan(M) - 0.5 * r2 * t20),
+        Phi=math.pi * (phi - z * N * one_minus_m_atan(M) - 0.5 * r2 * t20),
         gz=(4.0 * math.pi / 3.0) * (1.0 + N + N * N) / (W * (1.0 + N)) - math.pi * zt20,
         DPsi=math.pi * (phi - 0.5 * opm * t20 - 0.5 * r2 * t20 / opm + 0.5 * r2 * (t20 - t31)),
         zDgz=z * s["Dgz"],
@@ -174,8 +175,8 @@ def hertz_sliding_displacement_unit(x, y, z, nu) -> dict[str, np.ndarray]:
 def _integrator(unit):
     """sum_j w_j g'(rho_j) u(x / rho_j) over the nodes of a group of points (the displacement of a
     punch of radius rho and unit depth depends on x / rho only, (I42))."""
-    def integrate(nd: _Nodes, profile) -> dict[str, np.ndarray]:
-        live, rho, rm1 = _live(nd)
+    def integrate(nd: Nodes, profile) -> dict[str, np.ndarray]:
+        live, rho, rm1 = live_nodes(nd)
         w = np.where(live, nd.weights * profile.dg(rho), 0.0)
         with np.errstate(over="ignore", invalid="ignore"):   # M^2 of nodes far below the point: no weight
             u = unit(nd.x[:, None] / rho, nd.y[:, None] / rho, nd.z[:, None] / rho, nd.nu[:, None], rm1=rm1)
@@ -262,7 +263,7 @@ def _sum(x, y, z, b, nu, profile, rtol, unit, kernel):
     top = (z == 0.0) & (np.hypot(x, y) <= b)
     i = np.flatnonzero(~top)
     if i.size:
-        part = _superpose(x[i], y[i], z[i], b[i], nu[i], profile, rtol, kernel)
+        part = superpose(x[i], y[i], z[i], b[i], nu[i], profile, rtol, kernel)
         for k in _KEYS:
             out[k][i] = part[k]
     i = np.flatnonzero(top)

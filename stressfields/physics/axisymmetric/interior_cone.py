@@ -19,7 +19,7 @@ import math
 import numpy as np
 from ..flags import quiet
 
-from .interior_hertz import _coords, _geometry
+from .hertz_geometry import coords, geometry
 
 __all__ = ["cone_unit", "cone_dpdz_unit"]
 
@@ -48,7 +48,7 @@ def _cone_scalars(x, y, z, nu):
     """L, J, Sigma, sigma_zz, E = (sigma_rr - sigma_tt)/r^2 and T = sigma_rz/r of the cone per
     E* tan(theta)/2 (a = 1), docs/theory/interior.md (I46)-(I50), with l2 = sqrt(1 + M^2) and
     R the distance from the tip (R^2 = 1 + M^2 - N^2)."""
-    g = _geometry(x, y, z)
+    g = geometry(x, y, z)
     M, N, S = g["M"], g["N"], g["S"]
     opm = 1.0 + M * M
     l2 = np.sqrt(opm)
@@ -88,7 +88,7 @@ def cone_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     r = 1, z = 0; at z = 0 the surface values ((A12)-(A13) of docs/theory/axisymmetric.md) off the
     tip.  Closed form: relative error at most 1e-12 of |value| everywhere the value is finite
     (where a component passes through zero: of its largest term)."""
-    x, y, z = _coords(x, y, z)
+    x, y, z = coords(x, y, z)
     nu = np.asarray(nu, dtype=float)
     s = _cone_scalars(x, y, z, nu)
     r = s["r"]
@@ -108,8 +108,8 @@ def cone_dpdz_unit(x, y, z, nu) -> np.ndarray:
     (M^2 - 3 M^2 N^2 - N^4)/(S R (M R + S)) (I52), free of the far-field cancellation of the two
     terms.  Finite for z > 0.  Closed form: relative error at most 1e-12 of |value| where the value
     is finite (where it passes through zero: of the largest term of the numerator)."""
-    x, y, z = _coords(x, y, z)
-    g = _geometry(x, y, z)
+    x, y, z = coords(x, y, z)
+    g = geometry(x, y, z)
     M, N, S = g["M"], g["N"], g["S"]
     R = np.hypot(np.hypot(x, y), z)               # x^2 + y^2 underflows below 1e-154 a
     m2, n2 = M * M, N * N

@@ -20,67 +20,19 @@ import math
 import numpy as np
 
 from ..flags import quiet
+from .hertz_geometry import coords, geometry, one_minus_m_atan, x_minus_sin
 
-__all__ = ["COMPONENTS", "hertz_unit", "punch_unit", "sliding_unit", "sliding_punch_unit"]
+__all__ = ["COMPONENTS", "hertz_unit", "punch_unit", "sliding_unit", "sliding_punch_unit", "sliding_scalars",
+           "sliding_punch_scalars", "mns", "punch_radial"]
 
 COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
-
-# 1 - atan(t)/t = sum_k (-1)^(k+1) t^(2k) / (2k+1); 28 terms reach 0.25^28/57 < 1e-18 at t = 1/2
-_ATAN_DEFECT = [(-1.0) ** (k + 1) / (2 * k + 1) for k in range(1, 29)]
-
-
-def _one_minus_m_atan(M):
-    """F(M) = 1 - M arctan(1/M) for M >= 0 (F(0) = 1), docs/theory/interior.md (I4).  The direct
-    form loses the digits of F ~ 1/(3 M^2) for large M (the far field); there the series in
-    t = 1/M is used (t < 1/2), and (t - atan t)/t, which loses at most one digit, for 1/2 <= t < 1."""
-    M = np.asarray(M)
-    M = M.astype(np.result_type(M.dtype, np.float64))   # keeps np.longdouble (the tests' reference)
-    out = np.empty_like(M)
-    small = M <= 1.0
-    out[small] = 1.0 - M[small] * (0.5 * math.pi - np.arctan(M[small]))
-    t = 1.0 / M[~small]
-    t2 = t * t
-    series = np.zeros_like(t)
-    for c in _ATAN_DEFECT[::-1]:
-        series = series * t2 + c
-    series *= t2
-    mid = t >= 0.5
-    series[mid] = (t[mid] - np.arctan(t[mid])) / t[mid]
-    out[~small] = series
-    return out
-
-
-def _geometry(x, y, z, rm1=None):
-    """The quantities of docs/theory/interior.md (I2)-(I3), with a = 1: r^2, A = r^2 + z^2 - 1
-    (as (r-1)(r+1) + z^2, exact next to the edge ring), S = sqrt(A^2 + 4 z^2), M, N with
-    M^2 - N^2 = A and M N = z (the larger one from its square root, the other as z over it),
-    W = r^2 + z^2 + 1 + S = 2 (1 + M^2), Q = 1 - N^2 = 2 r^2 / W, and R = N^2 / S (0 on the edge
-    ring, where S = 0 and N = 0).  ``rm1``, if given, is r - 1 computed by the caller without the
-    rounding of r = |x| / a (the superposition knows it from the node's offset)."""
-    r2 = x * x + y * y
-    if rm1 is None:
-        rm1 = np.sqrt(r2) - 1.0
-    A = rm1 * (rm1 + 2.0) + z * z
-    S = np.hypot(A, 2.0 * z)
-    big = A >= 0.0
-    with np.errstate(invalid="ignore", divide="ignore"):
-        root = np.sqrt(0.5 * (S + np.abs(A)))
-        other = np.where(root > 0.0, z / np.where(root > 0.0, root, 1.0), 0.0)
-    M = np.where(big, root, other)
-    N = np.where(big, other, root)
-    W = r2 + z * z + 1.0 + S
-    Q = 2.0 * r2 / W
-    with np.errstate(invalid="ignore", divide="ignore"):
-        R = np.where(S > 0.0, N * N / np.where(S > 0.0, S, 1.0), 0.0)
-    return dict(r2=r2, z=z, S=S, M=M, N=N, W=W, Q=Q, R=R)
-
 
 def _scalars(g, nu):
     """Sigma = sigma_rr + sigma_tt, E = (sigma_rr - sigma_tt)/r^2, sigma_tt, sigma_zz and
     T = sigma_rz / r of the Hertz field / p0 (a = 1), docs/theory/interior.md (I5)-(I8), with E
     and sigma_tt in the forms (I56), (I58) that hold the factor 1 - 2 nu apart."""
     N, M, W, R = g["N"], g["M"], g["W"], g["R"]
-    F = _one_minus_m_atan(M)
+    F = one_minus_m_atan(M)
     NR = N * R                                     # N^3 / S
     sigma = NR - 2.0 * (1.0 + nu) * N * F
     ea = 4.0 * (2.0 + N) / (3.0 * W * W * (1.0 + N) ** 2)
@@ -106,13 +58,6 @@ def _cartesian(x, y, tt, E, zz, T):
     return {"xx": tt + E * x * x, "yy": tt + E * y * y, "zz": zz, "xy": E * x * y, "xz": x * T, "yz": y * T}
 
 
-def _coords(x, y, z):
-    x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
-    if np.any(z < 0.0):
-        raise ValueError("z (depth below the surface) must be >= 0")
-    return x, y, z
-
-
 @quiet
 def hertz_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     """Hertz (paraboloid) stress tensor below the surface, divided by p0, at coordinates divided by
@@ -120,9 +65,9 @@ def hertz_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     sec. 3.4, in the stable forms (I56), (I58)).  Finite everywhere in z >= 0; on the edge ring
     r = 1, z = 0 the exact limits sigma_rr = -sigma_tt = (1 - 2 nu)/3, sigma_zz = sigma_rz = 0.
     Closed form: relative error at most 1e-12 of |value| wherever the value is finite."""
-    x, y, z = _coords(x, y, z)
+    x, y, z = coords(x, y, z)
     nu = np.asarray(nu, dtype=float)
-    s = _scalars(_geometry(x, y, z), nu)
+    s = _scalars(geometry(x, y, z), nu)
     return _cartesian(x, y, s["tt"], s["E"], s["zz"], s["T"])
 
 
@@ -161,10 +106,10 @@ def punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
     r = 1, z = 0 the normal stresses are -inf and the shears NaN (their sign depends on the
     direction of approach; zero where the component vanishes by symmetry).  Closed form: relative
     error at most 1e-12 of |value| wherever the value is finite.  ``rm1``: r - 1 without rounding,
-    optional (see ``_geometry``)."""
-    x, y, z = _coords(x, y, z)
+    optional (see ``geometry``)."""
+    x, y, z = coords(x, y, z)
     nu = np.asarray(nu, dtype=float)
-    g = _geometry(x, y, z, rm1)
+    g = geometry(x, y, z, rm1)
     s = _scalars(g, nu)
     d = _derivatives(g, s, nu)
     with np.errstate(invalid="ignore"):
@@ -185,22 +130,6 @@ def _edge_ring(out, x, y, ring):
 
 
 # -- sliding (Hamilton & Goodman 1966): traction q0 sqrt(1 - r^2) along +x ----------------------
-
-# x - sin x = sum_k (-1)^(k+1) x^(2k+1) / (2k+1)!; 12 terms reach 1/25! < 1e-25 at x = 1
-_X_MINUS_SIN = [(-1.0) ** (k + 1) / math.factorial(2 * k + 1) for k in range(1, 13)]
-
-
-def _x_minus_sin(x, sin_x):
-    """x - sin x for 0 <= x <= 2 pi: the series below x = 1 (where the difference loses the digits
-    of x^3/6, e.g. 8 digits at x = 1e-4, the far field), the direct difference above (at most one
-    digit lost: 1 - sin 1 = 0.16).  ``sin_x`` is sin x formed algebraically by the caller."""
-    small = x < 1.0
-    x2 = x * x
-    series = np.zeros_like(x)
-    for c in _X_MINUS_SIN[::-1]:
-        series = series * x2 + c
-    return np.where(small, series * x2 * x, x - sin_x)
-
 
 # T20 - T31 = 2 int_0^phi sin^4 t dt = sum_{k>=2} (-1)^k (4^(2k+1) - 2^(2k+4)) phi^(2k+1) / (16 (2k+1)!)
 # (the k = 0, 1 terms cancel); 24 terms reach 16^25/51! < 1e-35 at phi = 1
@@ -236,7 +165,7 @@ def _three_f_minus(M):
     series = np.zeros_like(t2)
     for c in _H_SERIES[::-1]:
         series = series * t2 + c
-    direct = 3.0 * _one_minus_m_atan(M) - 1.0 / (1.0 + M * M)
+    direct = 3.0 * one_minus_m_atan(M) - 1.0 / (1.0 + M * M)
     return np.where(far, series * t2, direct)
 
 
@@ -251,14 +180,14 @@ def _three_f_minus_prime(M):
     for k, c in list(enumerate(_H_SERIES, start=1))[::-1]:
         series = series * t2 - 2.0 * k * c
     opm = 1.0 + M * M
-    F = _one_minus_m_atan(M)
+    F = one_minus_m_atan(M)
     with np.errstate(invalid="ignore", divide="ignore"):
         fp = np.where(M <= 1.0, -(0.5 * math.pi - np.arctan(np.minimum(M, 1.0))) + M / opm,
                       (F * opm - 1.0) / np.where(M > 1.0, M * opm, 1.0))
     return np.where(far, series * t2 * t, 3.0 * fp + 2.0 * M / (opm * opm))
 
 
-def _sliding_scalars(g):
+def sliding_scalars(g):
     """The radial functions of the sliding field, docs/theory/interior.md (I19)-(I21), with a = 1,
     q0 = 1: D = (1/r) d/dr, Lambda the harmonic potential of (I18) and Phi = Lambda_zz.  Every
     1/S is taken with the factor (M^2, N^2 or M N, each <= S) that makes it bounded; on the edge
@@ -273,8 +202,8 @@ def _sliding_scalars(g):
     opm = 1.0 + M * M
     opn = 1.0 + N
     phi = np.arctan2(1.0, M)
-    t20 = 0.5 * _x_minus_sin(2.0 * phi, 2.0 * M / opm)                 # int_u^inf ds / (sqrt(s)(1+s)^2)
-    t31 = _x_minus_sin(4.0 * phi, 4.0 * M * (M * M - 1.0) / (opm * opm)) / 16.0   # int sqrt(s)/(1+s)^3
+    t20 = 0.5 * x_minus_sin(2.0 * phi, 2.0 * M / opm)                 # int_u^inf ds / (sqrt(s)(1+s)^2)
+    t31 = x_minus_sin(4.0 * phi, 4.0 * M * (M * M - 1.0) / (opm * opm)) / 16.0   # int sqrt(s)/(1+s)^3
     dgz = -(2.0 * math.pi / 3.0) * (2.0 + N) / (opm * opm * opn * opn)
     bracket = 4.0 * M * M * (2.0 + N) / (opm * opn * opn) - N * (3.0 + N) / opn ** 3
     zd2gz = (2.0 * math.pi / 3.0) * mn * bracket / (opm * opm)           # z D^2 g_z
@@ -300,10 +229,10 @@ def sliding_unit(x, y, z, nu) -> dict[str, np.ndarray]:
     Finite and continuous everywhere in z >= 0, the edge ring r = 1, z = 0 included.  Closed form:
     relative error at most 1e-12 of |value| everywhere the value is finite, far field and next to
     edges included (where a component passes through zero: of the largest component)."""
-    x, y, z = _coords(x, y, z)
+    x, y, z = coords(x, y, z)
     nu = np.asarray(nu, dtype=float)
-    g = _geometry(x, y, z)
-    return _sliding_cartesian(x, y, z, nu, _sliding_scalars(g), g["N"])
+    g = geometry(x, y, z)
+    return _sliding_cartesian(x, y, z, nu, sliding_scalars(g), g["N"])
 
 
 def _sliding_cartesian(x, y, z, nu, s, N=None):
@@ -327,7 +256,7 @@ def _sliding_cartesian(x, y, z, nu, s, N=None):
 
 # -- the sliding punch: traction (1/pi)/sqrt(1 - r^2) along +x, the rho-derivative of rho T(x/rho) --
 
-def _sliding_punch_scalars(g):
+def sliding_punch_scalars(g):
     """The radial functions of (I19) for the traction 1/sqrt(1 - r^2) (a = 1), whose harmonic
     potential is Phi = 2 pi arctan(1/M): docs/theory/interior.md (I30)-(I31).  Each is f = k f_s -
     (r d/dr + z d/dz) f_s of the sliding one f_s of degree k, in closed form; every 1/S comes with
@@ -366,12 +295,12 @@ def sliding_punch_unit(x, y, z, nu, rm1=None) -> dict[str, np.ndarray]:
     with T = ``sliding_unit``, docs/theory/interior.md (I30)-(I32).  No division by r.  On the
     edge ring r = 1, z = 0 the values of (I32).  Closed form: relative error at most 1e-12 of
     |value| everywhere the value is finite.  ``rm1``: r - 1 without rounding, optional (see
-    ``_geometry``)."""
-    x, y, z = _coords(x, y, z)
+    ``geometry``)."""
+    x, y, z = coords(x, y, z)
     nu = np.asarray(nu, dtype=float)
-    g = _geometry(x, y, z, rm1)
+    g = geometry(x, y, z, rm1)
     with np.errstate(invalid="ignore"):
-        k = _sliding_cartesian(x, y, z, nu, _sliding_punch_scalars(g))
+        k = _sliding_cartesian(x, y, z, nu, sliding_punch_scalars(g))
     out = {c: v / math.pi for c, v in k.items()}
     _sliding_edge_ring(out, x, y, nu, g["S"] == 0.0)
     return out
@@ -393,9 +322,9 @@ def _sliding_edge_ring(out, x, y, nu, ring):
     d = 1e-10
     om = np.linspace(0.0, math.pi, 183)[1:-1]
     rr = 1.0 + d * np.cos(om)
-    g = _geometry(xs[:, None] * rr, ys[:, None] * rr, np.broadcast_to(d * np.sin(om), (idx.size, om.size)),
+    g = geometry(xs[:, None] * rr, ys[:, None] * rr, np.broadcast_to(d * np.sin(om), (idx.size, om.size)),
                   np.broadcast_to(d * np.cos(om), (idx.size, om.size)))
-    probe = _sliding_cartesian(xs[:, None] * rr, ys[:, None] * rr, g["z"], nus[:, None], _sliding_punch_scalars(g))
+    probe = _sliding_cartesian(xs[:, None] * rr, ys[:, None] * rr, g["z"], nus[:, None], sliding_punch_scalars(g))
     big = np.max([np.max(np.abs(v), axis=1) for v in probe.values()], axis=0)
     zero = {"xx": xs == 0.0, "yy": xs == 0.0, "zz": xs == 0.0, "xy": ys == 0.0, "xz": np.zeros(idx.size, bool),
             "yz": (xs == 0.0) | (ys == 0.0)}
@@ -412,7 +341,7 @@ def _sliding_edge_ring(out, x, y, nu, ring):
 # -- the punch's radial functions at once (the nodes of the superposition (I15)) ----------------
 
 def mns(rm1, zs, z2):
-    """S, M, N of ``_geometry`` (I2)-(I3) for z > 0 from r - 1 and z (and z^2), without its guards
+    """S, M, N of ``geometry`` (I2)-(I3) for z > 0 from r - 1 and z (and z^2), without its guards
     (S >= 2 z > 0 there, so M N = z divides by a positive root)."""
     A = rm1 + 2.0
     A *= rm1

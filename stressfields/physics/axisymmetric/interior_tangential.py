@@ -16,7 +16,7 @@ Routes (docs/theory/interior.md (I18)-(I23), (I30)-(I33)):
   included.
 * ``quadrature``: every profile as mu int_c^a K_T(x; rho) g'(rho) d rho, the superposition of
   sliding punches (I33) integrated over [c, a] directly (I45) on the panels of the normal route
-  with their node counts (``interior._superpose_flat``, (I16)-(I17), (I54)), summed as radial
+  with their node counts (``interior.superpose_flat``, (I16)-(I17), (I54)), summed as radial
   functions (I55).  Accuracy: |error| <= rtol * max(|value|, mu p_m) with
   p_m the mean contact pressure (measured in docs/theory/interior.md section 5).  On the surface
   z = 0 the tangential part of the surface kernels (docs/theory/axisymmetric.md (A34)-(A41)),
@@ -35,11 +35,13 @@ import math
 import numpy as np
 from ..flags import quiet
 
-from .interior import (_direction, _Flat, _live, _Nodes, _superpose, _superpose_flat, check_arguments,
-                       dpdz_integrator, flat_arguments)
-from .interior_hertz import COMPONENTS, _geometry, _sliding_punch_scalars, mns, sliding_punch_unit, sliding_unit
+from .hertz_geometry import geometry
+from .interior import dpdz_integrator
+from .interior_hertz import COMPONENTS, mns, sliding_punch_scalars, sliding_punch_unit, sliding_unit
 from .displacement import thin_annulus
 from .profiles import Profile, _load_exponent
+from .superposition import (Flat, Nodes, check_arguments, direction, flat_arguments, live_nodes, superpose,
+                            superpose_flat)
 from .surface import surface_dpdz, surface_stress
 
 __all__ = ["COMPONENTS", "interior_stress_tangential", "interior_dpdz_tangential", "sliding_dpdz_unit",
@@ -148,9 +150,9 @@ def _thin_annulus(out, x, y, z, a, c, w, nu, mu, profile, unit, shift):
 
 # -- the 1-D superposition of sliding punches (I33) ---------------------------------------------
 
-def _integrate_sliding(nd: _Nodes, profile) -> dict[str, np.ndarray]:
+def _integrate_sliding(nd: Nodes, profile) -> dict[str, np.ndarray]:
     """sum_j w_j g'(rho_j) K_T(x; rho_j), K_T(x; rho) = sliding_punch_unit(x / rho) / rho (I33)."""
-    live, rho, rm1 = _live(nd)
+    live, rho, rm1 = live_nodes(nd)
     dg = np.where(live, profile.dg(rho), 0.0)
     k = sliding_punch_unit(nd.x[:, None] / rho, nd.y[:, None] / rho, nd.z[:, None] / rho, nd.nu[:, None], rm1=rm1)
     w = np.where(live, nd.weights * dg / rho, 0.0)
@@ -160,8 +162,8 @@ def _integrate_sliding(nd: _Nodes, profile) -> dict[str, np.ndarray]:
 _SLIDING_KERNEL = (_integrate_sliding, COMPONENTS)
 
 
-def _flat_sliding(f: _Flat, profile):
-    """(I33) on the flat rule of ``interior._superpose_flat`` (I54): the radial functions of the
+def _flat_sliding(f: Flat, profile):
+    """(I33) on the flat rule of ``interior.superpose_flat`` (I54): the radial functions of the
     sliding punch (I30)-(I31) summed per point with the powers of 1/rho their monomials in x, y
     carry in (I21), and (I21) formed once per point (I55), with a1, a2, a3 in the far-field forms
     of (I57); None where a node is on a punch's
@@ -172,7 +174,7 @@ def _flat_sliding(f: _Flat, profile):
     S, M, N = mns(f.rm1, zs, z2)
     if not np.all(S > 0.0):
         return None
-    v = _sliding_punch_scalars(dict(M=M, N=N, S=S, z=zs))
+    v = sliding_punch_scalars(dict(M=M, N=N, S=S, z=zs))
     nu = f.node_nu()
     # D g = z D g_z - P - pi J (I57): formed from P, z D g_z and J, which do not cancel in the far field
     P, zdgz = v["P"], zs * v["Dgz"]
@@ -191,7 +193,7 @@ def _flat_sliding(f: _Flat, profile):
     d = f.sum(v["zDgzz"] * w)
     w *= rs
     b = f.sum(b * w)
-    x, y = _direction(f.x, f.y, f.r)
+    x, y = direction(f.x, f.y, f.r)
     k = 1.0 / (4.0 * math.pi * math.pi)            # (I21)'s 1/(4 pi) and the punch's 1/pi
     return {"xx": k * x * (a1 + x * x * b), "yy": k * x * (a2 + y * y * b), "xy": k * y * (a3 + x * x * b),
             "zz": -2.0 * k * x * cz, "xz": x0 / math.pi - 2.0 * k * x * x * d, "yz": -2.0 * k * x * y * d}
@@ -213,7 +215,7 @@ def _superposition(x, y, z, a, c, nu, mu, profile, rtol):
         return out
     # one integral over [c, a] (I45), not Sigma_T(a) - Sigma_T(c): the difference lost
     # eps |Sigma_T(a)|, 2e-11 mu p_m for the n = 0.5 power law at z = 7.6e-10 a on the axis
-    total = _superpose_flat(x[inner], y[inner], z[inner], a[inner], nu[inner], profile, rtol, _FLAT_SLIDING_KERNEL,
+    total = superpose_flat(x[inner], y[inner], z[inner], a[inner], nu[inner], profile, rtol, _FLAT_SLIDING_KERNEL,
                             lower=c[inner])
     for k in COMPONENTS:
         out[k][inner] = mu[inner] * total[k]
@@ -242,9 +244,9 @@ def sliding_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
     """d p_h/dz of the Hertz sliding field, divided by q0/a, at coordinates divided by the contact
     radius: -(2/3)(1 + nu) x N/(S(1 + M^2)) (I34), one product (no cancellation).  Finite for
     z > 0 and on the surface off the edge ring.  Closed form: relative error at most 1e-12 of
-    |value| where the value is finite.  ``rm1``: r - 1 without rounding (see ``_geometry``)."""
+    |value| where the value is finite.  ``rm1``: r - 1 without rounding (see ``geometry``)."""
     x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
-    g = _geometry(x, y, z, rm1)
+    g = geometry(x, y, z, rm1)
     M, N, S = g["M"], g["N"], g["S"]
     with np.errstate(invalid="ignore", divide="ignore"):
         return -(2.0 / 3.0) * (1.0 + np.asarray(nu, dtype=float)) * x * N / (S * (1.0 + M * M))
@@ -255,9 +257,9 @@ def sliding_punch_dpdz_unit(x, y, z, nu, rm1=None) -> np.ndarray:
     coordinates divided by the radius: (2(1 + nu)/(3 pi)) x N (N^2 - 3M^2)/S^3 (I35).  Finite for
     z > 0 and on the surface off the edge ring.  Closed form: relative error at most 1e-12 of
     |value| where the value is finite (where N^2 - 3M^2 passes through zero: of N^2 + 3M^2).
-    ``rm1``: r - 1 without rounding (see ``_geometry``)."""
+    ``rm1``: r - 1 without rounding (see ``geometry``)."""
     x, y, z = np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (x, y, z)))
-    g = _geometry(x, y, z, rm1)
+    g = geometry(x, y, z, rm1)
     M, N, S = g["M"], g["N"], g["S"]
     with np.errstate(invalid="ignore", divide="ignore"):
         return (2.0 * (1.0 + np.asarray(nu, dtype=float)) / (3.0 * math.pi)) * x * N * (N * N - 3.0 * M * M) / S ** 3
@@ -315,4 +317,4 @@ def _dpdz_below(x, y, z, a, c, nu, mu, profile, family, rtol):
         return k * v
     if family == "flat_punch":
         return mu * profile.depth_ / (a * a) * sliding_punch_dpdz_unit(x / a, y / a, z / a, nu)
-    return mu * _superpose(x, y, z, a, nu, profile, rtol, _SLIDING_DPDZ_KERNEL, lower=c)["dpdz"]
+    return mu * superpose(x, y, z, a, nu, profile, rtol, _SLIDING_DPDZ_KERNEL, lower=c)["dpdz"]
