@@ -239,6 +239,15 @@ def scales(p: Mapping[str, Any], physical: bool, a, profile: Profile) -> tuple:
     return 1.0 / pm, a / pm
 
 
+def scaled(values: dict, scale, dpdz_scale) -> dict:
+    """``values`` of the physics (per unit E*) with the stresses and their invariants times
+    ``scale`` and dp/dz times ``dpdz_scale`` (``scales``); the other fields unchanged."""
+    from ..physics import axisymmetric as ax
+
+    stresses = ax.STRESS + ax.INVARIANTS
+    return {n: v * scale if n in stresses else v * dpdz_scale if n == "dpdz" else v for n, v in values.items()}
+
+
 #: the variables of the normal contact alone (dims: the load, not the tangential parameters)
 CONTACT = ("contact_radius", "delta", "mean_pressure", "normal_force")
 
@@ -346,7 +355,8 @@ def _evaluate(kind: str | None):
             return out
         values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=_f(p, "nu"),
                               mu=_f(p, "mu"), ux0=_f(p, "ux0"), stick=stick, method=options["method"],
-                              rtol=options["rtol"], scale=scale, dpdz_scale=dpdz_scale)
+                              rtol=options["rtol"])
+        values = scaled(values, scale, dpdz_scale)
         if "stick_radius" in values and not physical:
             values["stick_radius"] = values["stick_radius"] / a
         out.update(values)

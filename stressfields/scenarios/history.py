@@ -23,7 +23,7 @@ import numpy as np
 from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
 from .axisymmetric import (A, DELTA, DEPTH, E, MU, N, NORMAL_FORCE, NU, PROFILE_F, PROFILE_R, R, REFERENCE,
                            THETA, X, Y, Z, check_depth, contact, displacement_units, effective_modulus, make_profile,
-                           route_of, scales, surface_point, variables)
+                           route_of, scaled, scales, surface_point, variables)
 from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
 
 HISTORY = Parameter("ux0_history", "tangential rigid-body displacements u_x0 divided by the indentation depth "
@@ -110,8 +110,8 @@ def evaluate(names, p, options):
     nu, mu = (np.asarray(p[k], dtype=float) for k in ("nu", "mu"))
     values, _ = ax.history_fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=nu, mu=mu,
                                   amplitude=np.asarray(p["amplitude"], dtype=float), history=p["ux0_history"],
-                                  step=p["step"], method=options["method"], rtol=options["rtol"], scale=scale,
-                                  dpdz_scale=dpdz_scale)
+                                  step=p["step"], method=options["method"], rtol=options["rtol"])
+    values = scaled(values, scale, dpdz_scale)
     if physical:       # F_x / (mu F_N) -> N, energies / (mu F_N delta) -> J
         force = mu * profile.normal_force(a) * effective_modulus(p)
         energy = force * profile.depth(a)

@@ -195,7 +195,7 @@ def test_hertz_mindlin_as_c_tends_to_a(eps):
 
 # -- seeded properties of the contract --------------------------------------------------------------
 #
-# Units below: a = 1, stresses in p_m, dp/dz in p_m/a (fields' scale = 1/p_m, dpdz_scale = a/p_m), so
+# Units below: a = 1, stresses in p_m, dp/dz in p_m/a (the fields per unit E* divided by p_m/E*), so
 # the normalisation S of the contract is 1 for every valued field.
 
 
@@ -249,9 +249,9 @@ def _points(radii, phis, c):
 
 def _normalised(profile, x, y, nu, mu, ux0, method="auto", rtol=1e-10, names=_VALUED + ("validity",)):
     pm = float(ax.mean_pressure(1.0, profile))
-    vals, route = ax.fields(names, profile, x, y, a=1.0, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol,
-                            scale=1.0 / pm, dpdz_scale=1.0 / pm)
-    return vals, route
+    vals, route = ax.fields(names, profile, x, y, a=1.0, nu=nu, mu=mu, ux0=ux0, method=method, rtol=rtol)
+    # per unit E* -> units of p_m (and p_m/a for dp/dz, a = 1)
+    return {n: v if n == "validity" else v / pm for n, v in vals.items()}, route
 
 
 def _same_singular_points(u, v, name):

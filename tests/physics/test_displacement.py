@@ -25,7 +25,7 @@ from stressfields.physics.axisymmetric.displacement import (displacements, hertz
                                                              hertz_sliding_displacement_unit,
                                                              punch_displacement_unit,
                                                              sliding_punch_displacement_unit)
-from stressfields.physics.axisymmetric.fields import _stick
+from stressfields.physics.axisymmetric.loading import stick as _stick
 from stressfields.physics.axisymmetric.interior import interior_stress
 from stressfields.physics.axisymmetric.interior_hertz import (hertz_unit, punch_unit, sliding_punch_unit,
                                                              sliding_unit)

@@ -285,7 +285,7 @@ def displacements(names, profile: Profile, x, y, z, *, a, nu, mu, ux0, c, mu_ker
     Cattaneo–Mindlin tangential load; docs/theory/interior.md (I36)-(I44).
 
     ``names``: any of "u_x", "u_y", "u_z".  ``c``, ``mu_kernel``: the stick radius and the
-    coefficient of friction the kernels take, as ``fields._stick`` returns them (a sticking flat
+    coefficient of friction the kernels take, as ``loading.stick`` returns them (a sticking flat
     punch: c = 0 and mu_kernel = (G*/E*) u_x0/delta); the traction is mu_kernel [p(r; a) - p(r; c)]
     along +x, none where mu_kernel = 0 or c = a.  ``mu`` and ``ux0`` (u_x0/delta) are those of the
     scenario (the traction is fixed by ``c`` and ``mu_kernel``: in the stick zone the tangential
@@ -312,27 +312,36 @@ def displacements(names, profile: Profile, x, y, z, *, a, nu, mu, ux0, c, mu_ker
     shape, (x, y, z, a, nu, c, muk) = flat_arguments("displacement", method, x, y, z, a, nu, c, mu_kernel)
     _validate(z, a, c, nu, muk, profile, rtol)
     normal = _normal(x, y, z, a, nu, profile, method, rtol)
-    slip = None
-    if profile.closed is not None and profile.closed[0] == "paraboloid":
-        ux, mu_ = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() for v in (ux0, mu))
-        with np.errstate(divide="ignore", invalid="ignore"):
-            slip = np.where(mu_ > 0.0, 2.0 * (1.0 - nu) / (2.0 - nu) * ux / mu_, 1.0)   # (A32): 1 - (c/a)^2
-            # only where u_x0 is the one of this c (the traction is fixed by c and mu_kernel)
-            slip = np.where((slip > 0.0) & (np.abs(1.0 - slip - (c / a) ** 2) <= 1e-13), slip, np.nan)
-    tangential = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol, slip)
+    tangential = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol, _slip(profile, shape, ux0, mu, nu, a, c))
     return {n: (normal[n[-1]] + tangential[n[-1]]).reshape(shape) for n in names}
 
 
-def tangential_displacements(names, profile: Profile, x, y, z, *, a, c, nu, mu_kernel, method: str = "auto",
-                             rtol: float = 1e-10) -> dict[str, np.ndarray]:
+def tangential_displacements(names, profile: Profile, x, y, z, *, a, c, nu, mu_kernel, ux0=None,
+                             method: str = "auto", rtol: float = 1e-10) -> dict[str, np.ndarray]:
     """The tangential part alone of ``displacements`` (the traction mu_kernel [p(r; a) - p(r; c)]
-    along +x), divided by delta: the term a loading history weights and sums (docs/theory/interior.md
-    (I43); docs/theory/axisymmetric.md (A69)).  Routes and accuracy as ``displacements``."""
+    along +x), divided by delta: one c-term of a load, which a loading history weights and sums
+    (docs/theory/interior.md (I43); docs/theory/axisymmetric.md (A69)).  ``ux0``: u_x0/delta of
+    this term where known (a monotonic load: the paraboloid then takes its slip ratio, exact as
+    c -> a); None: the kernels see c alone.  Routes and accuracy as ``displacements``."""
     names = tuple(names)
     shape, (x, y, z, a, nu, c, muk) = flat_arguments("displacement", method, x, y, z, a, nu, c, mu_kernel)
     _validate(z, a, c, nu, muk, profile, rtol)
-    part = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol)
+    slip = None if ux0 is None else _slip(profile, shape, ux0, mu_kernel, nu, a, c)
+    part = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol, slip)
     return {n: part[n[-1]].reshape(shape) for n in names}
+
+
+def _slip(profile, shape, ux0, mu, nu, a, c):
+    """The paraboloid's slip ratio 1 - (c/a)^2 = G* u_x0 / (mu E* delta) (A32) per flat point where
+    ``ux0`` is the displacement of the stick radius c (to 1e-13; NaN elsewhere), None for other
+    profiles: ``_hertz_mindlin`` takes it where the difference of the rounded radii loses digits."""
+    if profile.closed is None or profile.closed[0] != "paraboloid":
+        return None
+    ux, mu_ = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel() for v in (ux0, mu))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slip = np.where(mu_ > 0.0, 2.0 * (1.0 - nu) / (2.0 - nu) * ux / mu_, 1.0)   # (A32): 1 - (c/a)^2
+        # only where u_x0 is the one of this c (the traction is fixed by c and mu_kernel)
+        return np.where((slip > 0.0) & (np.abs(1.0 - slip - (c / a) ** 2) <= 1e-13), slip, np.nan)
 
 
 def has_displacement_closed_form(profile: Profile) -> bool:

@@ -235,7 +235,7 @@ def _flip(sign, x):
 
 
 def history_stress(x, y, a, nu, mu, profile, terms, *, components=("xx", "yy", "zz", "xy", "xz", "yz"),
-                   method="closed", rtol=1e-10) -> dict[str, np.ndarray]:
+                   method="closed", rtol=1e-10, radii=None, width=None) -> dict[str, np.ndarray]:
     """Surface stress tensor / E* after a loading history with c-terms ``terms`` (``State.terms``),
     eq. (27)-(28) written as sum_k w_k (monotonic tangential field with stick radius c_k, eq. 24-25)
     plus the normal part (eq. 9).
@@ -247,17 +247,20 @@ def history_stress(x, y, a, nu, mu, profile, terms, *, components=("xx", "yy", "
     where r <= c_min (both in their stick zones).  sigma_xz is purely tangential and summed
     directly.  So a single term is exactly the monotonic result, and the unbounded or
     direction-dependent values at a conical tip r = 0 are those of ``surface_stress``.
-    Arguments as in ``surface_stress`` (a, nu, mu, x, y broadcast)."""
+    Arguments as in ``surface_stress`` (a, nu, mu, x, y broadcast); ``radii``: the stick radii c_k
+    of the terms where known otherwise (a monotonic load given as a force, a sticking flat punch:
+    ``loading.stick``; None: ``stick_radii``); ``width``: a - c of the first term from its slip
+    ratio (``profiles.annulus_width``), handed to ``surface_stress`` (None: a - c)."""
     comps = tuple(components)
     if not terms:
         return surface_stress(x, y, a, a, nu, mu, profile, components=comps, method=method, rtol=rtol)
     x, y, a, nu, mu = _broadcast(x, y, a, nu, mu)
-    cs = stick_radii(terms, a, nu, mu, profile)
+    cs = stick_radii(terms, a, nu, mu, profile) if radii is None else radii
     weights = [w for _, w in terms]
     sigma0 = sum(weights)
     need = tuple(dict.fromkeys(comps + ("xz",)))
     kw = dict(method=method, rtol=rtol)
-    base = surface_stress(_flip(sigma0, x), y, a, cs[0], nu, mu, profile, components=need, **kw)
+    base = surface_stress(_flip(sigma0, x), y, a, cs[0], nu, mu, profile, components=need, width=width, **kw)
     out = {k: base[k].copy() for k in comps if k != "xz"}
     if "xy" in out and sigma0 < 0:
         out["xy"] = -out["xy"]
@@ -286,21 +289,23 @@ def history_stress(x, y, a, nu, mu, profile, terms, *, components=("xx", "yy", "
     return {k: out[k] for k in comps}
 
 
-def history_dpdz(x, y, a, nu, mu, profile, terms, *, method="closed", rtol=1e-10) -> np.ndarray:
+def history_dpdz(x, y, a, nu, mu, profile, terms, *, method="closed", rtol=1e-10, radii=None,
+                 width=None) -> np.ndarray:
     """d p_h/dz at z = 0+ / E* after a loading history: normal part eq. (11) plus
     sum_k w_k (tangential part of eq. 26 with stick radius c_k), the tangential part being
     (2(1+nu)/3) dq/dx (local).  Built like ``history_stress``: the annulus term w_k [D(c_k) -
     D(c_min)] vanishes exactly where r > c_k (both slip there, q = mu p locally).  Unbounded on
     r = a (-inf sgn(x) sigma_0, contact side) and on every stick edge r = c_k > 0 (+inf sgn(x)
-    times the net weight of the terms with that radius); 0 there on x = 0."""
+    times the net weight of the terms with that radius); 0 there on x = 0.  ``radii``, ``width`` as
+    for ``history_stress``."""
     if not terms:
         return surface_dpdz(x, y, a, a, nu, mu, profile, method=method, rtol=rtol)
     x, y, a, nu, mu = _broadcast(x, y, a, nu, mu)
-    cs = stick_radii(terms, a, nu, mu, profile)
+    cs = stick_radii(terms, a, nu, mu, profile) if radii is None else radii
     weights = [w for _, w in terms]
     sigma0 = sum(weights)
     kw = dict(method=method, rtol=rtol)
-    out = surface_dpdz(_flip(sigma0, x), y, a, cs[0], nu, mu, profile, **kw)
+    out = surface_dpdz(_flip(sigma0, x), y, a, cs[0], nu, mu, profile, width=width, **kw)
     if len(terms) == 1:
         return out
     r = np.hypot(x, y)
