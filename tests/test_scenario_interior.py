@@ -41,7 +41,8 @@ def _half_spread(tau, s1, s3):
     the variables' units multiplies each of the three after their rounding, which moves the
     difference by at most 2 ulp of the larger principal stress (two products and the subtraction,
     each within half an ulp of it)."""
-    np.testing.assert_array_less(np.abs(tau - (s1 - s3) / 2), 2 * np.spacing(np.maximum(np.abs(s1), np.abs(s3))) + 1e-300)
+    bound = 2 * np.spacing(np.maximum(np.abs(s1), np.abs(s3)))
+    np.testing.assert_array_less(np.abs(tau - (s1 - s3) / 2), bound + 1e-300)
 
 
 @pytest.mark.parametrize("kind", sorted(PROFILES))

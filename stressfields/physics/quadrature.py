@@ -30,8 +30,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import roots_jacobi, roots_legendre
 
-__all__ = ["Orders", "orders", "table_row", "gauss_legendre", "gauss_jacobi", "panel_count", "panel_rule",
-           "interval_rule", "segment_rule", "group_by"]
+__all__ = ["Orders", "orders", "tolerance_of", "table_row", "gauss_legendre", "gauss_jacobi", "panel_count",
+           "panel_rule", "interval_rule", "segment_rule", "group_by"]
 
 
 @functools.lru_cache(maxsize=None)
@@ -101,6 +101,12 @@ def orders(rtol: float) -> Orders:
         if rtol >= tol:
             return o
     return _TABLE[-1][1]  # pragma: no cover - guarded above
+
+
+def tolerance_of(ords: Orders) -> float:
+    """The tolerance of the row of ``orders`` whose orders are ``ords`` (the last, finest row's for
+    orders not in the table): the accuracy a caller that builds further rules on them must reach."""
+    return next((tol for tol, o in _TABLE if o == ords), _TABLE[-1][0])
 
 
 def table_row(table, rtol: float, what: str = "the quadrature"):

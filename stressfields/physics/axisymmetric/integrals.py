@@ -30,8 +30,7 @@ import math
 import numpy as np
 
 from ..setup_cache import SETUP
-from ..quadrature import _TABLE as _ORDER_ROWS
-from ..quadrature import Orders, gauss_jacobi, group_by, panel_count, panel_rule, segment_rule
+from ..quadrature import Orders, gauss_jacobi, group_by, panel_count, panel_rule, segment_rule, tolerance_of
 from .common import arccosh_ratio, log_sinc, sqrt_diff
 
 __all__ = ["tau_integrals", "theta_moments", "pressure_gradient_D", "pressure_gradient_far",
@@ -432,7 +431,7 @@ def _block_order(ords: Orders) -> int:
     """Chebyshev points per block for the tolerance row of ``ords``: the kernel interpolation
     error on a block _SEP widths from u = r is at most K rho^-p of the kernel's largest value on
     the block (A105); p makes it rtol/20."""
-    rtol = next((tol for tol, o in _ORDER_ROWS if o == ords), _ORDER_ROWS[-1][0])
+    rtol = tolerance_of(ords)
     delta = 1.0 + 2.0 * _SEP                         # singular point / half width, from the centre
     rho = _ELLIPSE * (delta + math.sqrt(delta * delta - 1.0))
     # the ellipse's nearest point to the singularity, in half widths; the strongest kernel of (A104)

@@ -39,7 +39,7 @@ from .hertz_geometry import geometry
 from .interior import dpdz_integrator
 from .interior_hertz import COMPONENTS, mns, sliding_punch_scalars, sliding_punch_unit, sliding_unit
 from .displacement import thin_annulus
-from .profiles import Profile, _load_exponent
+from .profiles import Profile, load_exponent
 from .superposition import (Flat, Nodes, check_arguments, direction, flat_arguments, live_nodes, superpose,
                             superpose_flat)
 from .surface import surface_dpdz, surface_stress
@@ -133,7 +133,7 @@ def _thin_annulus(out, x, y, z, a, c, w, nu, mu, profile, unit, shift):
     (docs/theory/interior.md (I59)): the stresses with ``sliding_punch_unit`` and shift 0, dp/dz
     with ``sliding_punch_dpdz_unit`` and shift -1.  The width w comes from the slip ratio
     (``profiles.annulus_width``), so the result keeps its relative accuracy as c -> a."""
-    n = _load_exponent(profile)
+    n = load_exponent(profile)
     if n is None:
         return out
     with np.errstate(invalid="ignore", divide="ignore"):

@@ -46,7 +46,7 @@ from .fields import fields
 from .profiles import Profile
 from .surface import stick_radius
 
-__all__ = ["PEAKS", "FINITE", "UNBOUNDED", "UNDEFINED", "NOT_CONVERGED", "peaks"]
+__all__ = ["PEAKS", "FINITE", "UNBOUNDED", "UNDEFINED", "NOT_CONVERGED", "peaks", "search"]
 
 #: the keys of ``peaks``
 PEAKS = ("tau_max_peak", "tau_max_peak_r", "tau_max_peak_depth",
@@ -88,15 +88,18 @@ def _one(profile, a, nu, mu, ux0, method, rtol) -> dict:
     edges = [e for e in edges if e == 0.0 or 0.0 < abs(e) <= a]
     out, flag = {}, FINITE
     for name in _INVARIANTS:
-        value, x, z, code = _peak(lambda u, w: field(name, u * a, w * a), np.array(edges) / a, tangential)
+        value, x, z, code = search(lambda u, w: field(name, u * a, w * a), np.array(edges) / a, tangential)
         out.update({f"{name}_peak": value, f"{name}_peak_r": x * a, f"{name}_peak_depth": z * a})
         flag = max(flag, code)
     out["peak_validity"] = flag
     return out
 
 
-def _peak(f, edges, tangential):
-    """(value, x/a, z/a, code) of the maximum of f(x/a, z/a) over the search box."""
+def search(f, edges, tangential):
+    """(value, x/a, z/a, code) of the maximum of f(x/a, z/a) over the search box (steps 1-5 of the
+    module docstring): ``edges`` the surface points x/a where f may be singular or kinked,
+    ``tangential`` whether the field is not even in x (then the box spans -2a <= x <= 2a).  Any
+    field of the same shape may be searched this way (the graded family's peaks use it)."""
     at_edges = f(edges, 0.0)
     if np.any(np.isposinf(at_edges)):
         return np.inf, edges[np.argmax(np.isposinf(at_edges))], 0.0, UNBOUNDED

@@ -858,7 +858,7 @@ def tabulated(r, f) -> Profile:
 
 # -- load control: the load relation inverted, and the tangential load ratio --------------------------
 
-def _load_exponent(profile: Profile) -> float | None:
+def load_exponent(profile: Profile) -> float | None:
     """n of the power-law families, where g ∝ a^n and F_N ∝ a^(n+1) (docs/theory/axisymmetric.md
     (A5)-(A7)); None for the flat punch and tabulated profiles."""
     if profile.kind == "cone":
@@ -878,7 +878,7 @@ def radius_at_force(profile: Profile, force) -> np.ndarray:
     tabulated: the shared bisection (``roots.bisect`` on log a, ``_relative_root``, as
     ``Tabulated.contact_radius``) on F_N, which increases with a for a non-decreasing profile."""
     force = _arr(force)
-    n = _load_exponent(profile)
+    n = load_exponent(profile)
     if n is not None:
         return ((n + 1.0) * force / (2.0 * profile.tip_coefficient)) ** (1.0 / (n + 1.0))
     if profile.kind == "flat_punch":
@@ -916,7 +916,7 @@ def stick_radius_of_force(profile: Profile, a, keep) -> np.ndarray:
     on nu and mu): power laws c = a keep^(1/(n+1)); flat punch: a (stick) below gross slip, 0 at it;
     tabulated: ``radius_at_force``.  keep = 0 (fx = 1, gross slip) gives 0, keep = 1 gives a."""
     a, keep = np.broadcast_arrays(_arr(a), _arr(keep))
-    n = _load_exponent(profile)
+    n = load_exponent(profile)
     if n is not None:
         c = a * (np.sqrt(keep) if n == 1.0 else np.cbrt(keep) if n == 2.0 else keep ** (1.0 / (n + 1.0)))
     elif profile.kind == "flat_punch":
@@ -938,7 +938,7 @@ def slip_ratio(profile: Profile, a, fx, keep=None) -> np.ndarray:
     accurately than fx itself (``remaining_force``), used for fx >= 1/2."""
     fx = _arr(fx)
     keep = 1.0 - fx if keep is None else _arr(keep)
-    n = _load_exponent(profile)
+    n = load_exponent(profile)
     if n is not None:
         with np.errstate(divide="ignore"):
             log_keep = np.where(fx < 0.5, np.log1p(-np.minimum(fx, 0.5)), np.log(np.maximum(keep, 0.0)))
@@ -959,7 +959,7 @@ def annulus_width(profile: Profile, a, c, ux0, nu, mu) -> np.ndarray:
     radius of this ux0 (to 1e-13 a: a stick radius given otherwise), beyond power laws (flat punch,
     tabulated) and outside partial slip, a - c."""
     a, c, ux0, nu, mu = np.broadcast_arrays(*(_arr(v) for v in (a, c, ux0, nu, mu)))
-    n = _load_exponent(profile)
+    n = load_exponent(profile)
     plain = a - c
     if n is None:
         return plain
@@ -976,7 +976,7 @@ def force_ratio(profile: Profile, a, rho) -> np.ndarray:
     beyond gross slip (rho >= 1, (A33)).  Power laws: 1 - (1 - rho)^((n+1)/n); flat punch: rho
     (whole stick, (A37)); tabulated: c by ``Tabulated.contact_radius``."""
     rho = _arr(rho)
-    n = _load_exponent(profile)
+    n = load_exponent(profile)
     if n is not None:
         with np.errstate(divide="ignore"):
             return np.where(rho >= 1.0, 1.0, -np.expm1((n + 1.0) / n * np.log1p(-np.minimum(rho, 1.0))))

@@ -254,7 +254,7 @@ def peaks(profile: Indenter, *, a, k, nu, E0, c0, delta_gamma=None, method: str 
     4 not converged).  The search of ``axisymmetric.peaks`` (its module docstring) on the field of
     :func:`interior_fields`: the surface singular points r = 0 and r = a probed first, a grid over
     rho in [0, 2] and 41 depths to 3, a bounded Nelder-Mead refinement of the best local maxima."""
-    from ..axisymmetric.peaks import FINITE, _peak
+    from ..axisymmetric.peaks import FINITE, search
 
     args = [np.asarray(v, dtype=float) for v in (a, k, nu, E0, c0, 0.0 if delta_gamma is None else delta_gamma)]
     shape = np.broadcast_shapes(*(v.shape for v in args), *(g.shape for g in profile.geometry))
@@ -270,7 +270,7 @@ def peaks(profile: Indenter, *, a, k, nu, E0, c0, delta_gamma=None, method: str 
                 return interior_fields([name], one, a=ai, rho=u, z=w, k=ki, nu=nui, E0=ei, c0=ci,
                                        delta_gamma=None if delta_gamma is None else dgi, method=method,
                                        rtol=rtol)[name]
-            value, x, z, code = _peak(field, np.array([0.0, 1.0]), False)
+            value, x, z, code = search(field, np.array([0.0, 1.0]), False)
             out[f"{name}_peak"][idx], out[f"{name}_peak_rho"][idx], out[f"{name}_peak_depth"][idx] = value, x, z
             flag = max(flag, code)
         out["peak_validity"][idx] = flag
