@@ -193,9 +193,8 @@ def _pipeline(names: list[str], profile: Profile, x, y, z, load, *, a, nu, mu, m
 
 def _flat(arrays: dict) -> tuple[tuple[int, ...], dict[str, np.ndarray]]:
     """The broadcast shape of ``arrays`` and each of them broadcast to it and flattened."""
-    arrays = {k: np.asarray(v, dtype=np.int64 if k == "step" else float) for k, v in arrays.items()}
-    shape = np.broadcast_shapes(*(v.shape for v in arrays.values()))
-    return shape, {k: np.broadcast_to(v, shape).ravel() for k, v in arrays.items()}
+    full = np.broadcast_arrays(*(np.asarray(v, dtype=np.int64 if k == "step" else float) for k, v in arrays.items()))
+    return full[0].shape, {k: v.ravel() for k, v in zip(arrays, full)}
 
 
 def _on_surface(names, profile, x, y, case, load, method, rtol):

@@ -254,6 +254,10 @@ def history_stress(x, y, a, nu, mu, profile, terms, *, components=("xx", "yy", "
     comps = tuple(components)
     if not terms:
         return surface_stress(x, y, a, a, nu, mu, profile, components=comps, method=method, rtol=rtol)
+    if radii is not None and len(terms) == 1 and terms[0][1] == 1.0:
+        # a monotonic load: the one call the construction below makes, without its copies
+        return surface_stress(x, y, a, radii[0], nu, mu, profile, components=comps, method=method, rtol=rtol,
+                              width=width)
     x, y, a, nu, mu = _broadcast(x, y, a, nu, mu)
     cs = stick_radii(terms, a, nu, mu, profile) if radii is None else radii
     weights = [w for _, w in terms]
@@ -300,6 +304,8 @@ def history_dpdz(x, y, a, nu, mu, profile, terms, *, method="closed", rtol=1e-10
     for ``history_stress``."""
     if not terms:
         return surface_dpdz(x, y, a, a, nu, mu, profile, method=method, rtol=rtol)
+    if radii is not None and len(terms) == 1 and terms[0][1] == 1.0:
+        return surface_dpdz(x, y, a, radii[0], nu, mu, profile, method=method, rtol=rtol, width=width)
     x, y, a, nu, mu = _broadcast(x, y, a, nu, mu)
     cs = stick_radii(terms, a, nu, mu, profile) if radii is None else radii
     weights = [w for _, w in terms]
