@@ -26,7 +26,7 @@ from stressfields.physics.axisymmetric.interior_hertz import sliding_punch_unit
 from stressfields.physics.axisymmetric.interior_tangential import (interior_dpdz_tangential,
                                                                    interior_stress_tangential,
                                                                    sliding_punch_dpdz_unit)
-from stressfields.physics.axisymmetric.surface import mean_pressure
+from stressfields.physics.axisymmetric.surface import mean_pressure, surface_dpdz, surface_stress
 from stressfields.physics.axisymmetric.tangential import dpdz_closed, inplane_closed
 
 # the package re-exports a function named ``fields``: the module itself
@@ -147,8 +147,8 @@ def test_surface_tangential_part_keeps_relative_accuracy(name, fx, nu):
             assert abs(got[k] - ref[k]) <= 1e-12 * scale, (name, fx, nu, x, y, k, got[k], ref[k])
         assert abs(got["dpdz"] - ref["dpdz"]) <= 1e-12 * abs(ref["dpdz"]), (name, fx, nu, x, y, got["dpdz"], ref)
         # and the full surface dp/dz carries that part on top of the normal one
-        total = float(F.surface_dpdz(x, y, A, c, nu, MU, profile, width=w))
-        normal = float(F.surface_dpdz(x, y, A, c, nu, 0.0, profile))
+        total = float(surface_dpdz(x, y, A, c, nu, MU, profile, width=w))
+        normal = float(surface_dpdz(x, y, A, c, nu, 0.0, profile))
         assert abs((total - normal) - got["dpdz"]) <= 1e-15 * abs(normal) + 1e-12 * abs(got["dpdz"])
 
 
@@ -162,9 +162,9 @@ def test_surface_1d_route_meets_its_contract(name, fx):
     floor = MU * float(mean_pressure(A, profile))
     for x, y in points(w):
         ref = surface_reference(profile, x, y, nu, c_exact)
-        tot = F.surface_stress(x, y, A, c, nu, MU, profile, method="quadrature", components=("xx", "yy", "xy", "xz"),
+        tot = surface_stress(x, y, A, c, nu, MU, profile, method="quadrature", components=("xx", "yy", "xy", "xz"),
                                width=w)
-        nor = F.surface_stress(x, y, A, c, nu, 0.0, profile, method="quadrature", components=("xx", "yy", "xy"))
+        nor = surface_stress(x, y, A, c, nu, 0.0, profile, method="quadrature", components=("xx", "yy", "xy"))
         for k in ("xx", "yy", "xy", "xz"):
             got = float(tot[k]) - (float(nor[k]) if k != "xz" else 0.0)
             assert abs(got - ref[k]) <= 1e-10 * max(abs(ref[k]), floor), (name, fx, x, y, k, got, ref[k])
