@@ -322,7 +322,8 @@ def tangential_interior_fields(names: Sequence[str], profile: Indenter, *, a, x,
         a_s = A[sel]
         ux0 = displacement_ratio(slip_ratio(prof, a_s, FX[sel]), NU[sel], MU[sel])
         vals, _ = ax.fields(names, prof, X[sel] * a_s, 0.0, Z[sel] * a_s, a=a_s, nu=NU[sel], mu=MU[sel], ux0=ux0,
-                            method=method, rtol=rtol, scale=cN[sel])
+                            method=method, rtol=rtol)
         for n in names:
-            out[n][sel] = vals[n]
+            # the family's values are per unit E*: the pair's c_N* takes its place
+            out[n][sel] = vals[n] if n == "validity" else vals[n] * cN[sel]
     return {n: v.reshape(shape) for n, v in out.items()}
