@@ -112,7 +112,7 @@ def test_auto_uses_the_single_indenter_for_narrow_periodic_contacts(method):
     w, rtol = np.array([1e-4, 1e-3, 0.3]), 1e-6
     # 1e5 points per contact: below that the substitution test costs more than it saves
     params = {"domain": ["periodic", "nonperiodic"], "amplitudes": [0.5], "wavenumbers": [1], "a": list(w),
-              "x": {"start": -1.0, "stop": 1.0, "num": wv.api.SUBSTITUTE_MIN_POINTS + 1}}
+              "x": {"start": -1.0, "stop": 1.0, "num": wv.contact.SUBSTITUTE_MIN_POINTS + 1}}
     ds = sf.generate({"scenario": "wavy", "parameters": params, "method": {"method": method, "rtol": rtol},
                       "output": {"variables": ["pressure", "periodic_correction", "error_estimate"]}}).compute()
     periodic = ds.sel(domain="periodic")

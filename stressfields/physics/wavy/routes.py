@@ -28,7 +28,7 @@ from typing import Callable
 import numpy as np
 
 from ..names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
-from .api import approximate_pressure_eq18, approximate_pressure_eq20
+from .contact import approximate_pressure_eq18, approximate_pressure_eq20
 
 #: the paper's approximate pressures (non-periodic, docs/theory/wavy.md (W29)): method name -> kernel
 #: kernel(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics) -> p/p*

@@ -1,4 +1,4 @@
-"""Public kernels of the wavy (multisinusoidal) contact family.
+"""The wavy (multisinusoidal) contact: its pressure, displacements, per-contact quantities and the field below.
 
 Tsukanov, I. Yu. (2018) "Partial contact of a rigid multisinusoidal wavy surface with an elastic
 half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467, with the equations,
