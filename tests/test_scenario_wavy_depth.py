@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import stressfields as sf
+from stressfields.physics.flags import Validity
 from stressfields.physics.wavy import contact
 
 from test_scenario_wavy import _exit_2
@@ -30,7 +31,7 @@ def test_depth_is_a_dimension_with_the_surface_at_z_0():
     assert (ds.validity.sel(z=[0.05, 1.0]) == 0).all()
     # the edges x = +-1 at z = 0: dpdz has a direction-dependent limit there
     edge = ds.sel(z=0.0, x=[-1.0, 1.0])
-    assert np.isnan(edge.dpdz).all() and (edge.validity == 4).all()
+    assert np.isnan(edge.dpdz).all() and (edge.validity == Validity.undefined_direction_dependent_limit).all()
     assert "below the surface: complex potential" in ds.sigma_xx.attrs["stressfields_method"]
     assert "stresses below the surface" in ds.sigma_xx.attrs["stressfields_accuracy"]
 

@@ -11,6 +11,7 @@ from typing import Iterable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ..flags import Validity as V
 from . import contact
 from .contact import DEFAULT_MAX_TERMS, DEFAULT_RTOL
 from .routes import approximation, substitutes
@@ -56,16 +57,19 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
     * n_terms, error_estimate (/p*), converged (int8) -- the series length, its error bound and
       whether rtol was met, (W22), (W23);
     * periodic_correction -- bound on max |p_periodic - p_nonperiodic|/p* over the contact, (W26);
-    * validity -- int8 per point, (W25): 0 series converged, 1 not converged, 2 approximate formula,
-      3 pressure taken from the non-periodic series (only where ``pressure`` is among ``names``);
-      with fields below the surface also (W42): 1 where their bound exceeds rtol, 4 dpdz undefined at
-      a surface edge, 5 partial slip whose stick zone is not admissible;
+    * validity -- int8 per point, the codes of ``flags.Validity`` (W25): within_stated_accuracy,
+      series_not_converged, approximate_formula, nonperiodic_series_within_rtol (only where
+      ``pressure`` is among ``names``); with fields below the surface also (W42): series_not_converged
+      where their bound exceeds rtol, undefined_direction_dependent_limit where dpdz is NaN at a surface
+      edge; stick_zone_not_admissible (W43) for partial slip whose stick zone is not admissible, where the
+      tangential load's values are NaN;
     * ``below``: the caller evaluates the field below the surface (at any of its points), so that
       error_estimate bounds the stresses too, whichever fields this call computes (W39);
     * sigma_xx ... dpdz, shear_traction -- at depth z_over_a = z/a (plane strain with Poisson's ratio
       nu; tangential load fx = Q/(mu P) with friction coefficient mu), ``contact.subsurface``, (W36)-(W43);
       stick_half_width (c/a) and the peaks of tau_max and von Mises with their positions (x/a, z/a),
-      ``contact.subsurface_peaks`` (W44); peak_validity 4 where a search ended on its box's border;
+      ``contact.subsurface_peaks`` (W44); peak_validity search_not_converged where a search ended on its
+      box's border, stick_zone_not_admissible (peaks NaN) where (W43) is not the solution;
     * u_x, u_z -- the displacements /Delta_1 at depth z_over_a under the same loads (datum of uz),
       ``contact.subsurface_displacement``, (W45); single indenter only (ValueError for periodic=True).
 
@@ -98,7 +102,7 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
             out["pressure"] = approx(x_over_a, *table, n_harmonics=n_harmonics)
         else:
             value, info = contact.pressure(x_over_a, *table, **series, substitute=substitutes(method),
-                                       contact_points=contact_points)
+                                           contact_points=contact_points)
             out["pressure"] = value
             substituted = info.get("substituted", np.False_)
     interior = wanted.intersection(INTERIOR)
@@ -107,23 +111,31 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
             contact.pressure(x_over_a, *table, **series, substitute=substitutes(method),
                              contact_points=contact_points)[0]
             if approx is None else None)
-        values, sub = contact.subsurface(tuple(n for n in names if n in INTERIOR), x_over_a, z_over_a, *table, **series,
-                                     nu=nu, mu=mu, fx=fx, surface_pressure=surface)
+        values, sub = contact.subsurface(tuple(n for n in names if n in INTERIOR), x_over_a, z_over_a, *table,
+                                         **series, nu=nu, mu=mu, fx=fx, surface_pressure=surface)
         out.update(values)
     moved = wanted.intersection(DISPLACEMENTS)
     if moved:
         ux, uz, disp = contact.subsurface_displacement(x_over_a, z_over_a, *table, **series, nu=nu, mu=mu, fx=fx)
         out.update(u_x=ux, u_z=uz)
     loaded = dict(periodic=periodic, n_harmonics=n_harmonics)
-    if "stick_half_width" in wanted:
-        out["stick_half_width"] = contact.stick_half_width(two_a_over_lambda1, amplitudes, wavenumbers,
-                                                       np.where(np.asarray(mu) > 0, fx, 0.0), **loaded)[0]
+    # the stick zone's admissibility is the case's, so the flag holds it whichever variables are asked
+    shear = np.where(np.asarray(mu) > 0, fx, 0.0)
+    admissible = np.True_
+    if "stick_half_width" in wanted or ("validity" in wanted and np.any(shear > 0.0)):
+        c_over_a, admissible = contact.stick_half_width(two_a_over_lambda1, amplitudes, wavenumbers, shear,
+                                                        **loaded)
+        admissible = admissible | ~(shear > 0.0)
+        if "stick_half_width" in wanted:
+            out["stick_half_width"] = c_over_a
     if wanted.intersection(LOADED[1:]):
         pk = contact.subsurface_peaks(*table, **series, nu=nu, mu=mu, fx=fx)
         for name in ("tau_max", "von_mises"):
             out.update({f"{name}_peak": pk[name][0], f"{name}_peak_x": pk[name][1],
                         f"{name}_peak_depth": pk[name][2]})
-        out["peak_validity"] = np.where(pk["on_border"], 4, 0).astype(np.int8)
+        out["peak_validity"] = np.where(pk["stick_admissible"],
+                                        np.where(pk["on_border"], V.search_not_converged, V.within_stated_accuracy),
+                                        V.stick_zone_not_admissible).astype(np.int8)
     if "uz" in wanted:
         out["uz"] = contact.displacement(x_over_a, *table, **series)[0]
     if wanted.intersection(_PEAK):
@@ -131,16 +143,21 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
         out.update(peak_pressure=p0, n_terms=info["n_terms"], error_estimate=info["error_estimate"],
                    converged=info["converged"].astype(np.int8))
         if "validity" in wanted:
-            v = (np.int8(2) if approx is not None else
-                 np.where(info["converged"], np.where(substituted, 3, 0), 1).astype(np.int8))
+            # one code per point: the later causes below win (a case whose stick zone is not admissible
+            # has no solution here, whatever its series did)
+            v = (np.int8(V.approximate_formula) if approx is not None else
+                 np.where(info["converged"],
+                          np.where(substituted, V.nonperiodic_series_within_rtol, V.within_stated_accuracy),
+                          V.series_not_converged).astype(np.int8))
             if moved:
-                v = np.where(disp["converged"], v, 1)
-                v = np.where(disp["stick_admissible"], v, contact.STICK_NOT_ADMISSIBLE).astype(np.int8)
+                v = np.where(disp["converged"], v, V.series_not_converged)
+                v = np.where(disp["stick_admissible"], v, V.stick_zone_not_admissible)
             if interior:
-                v = np.where(sub["converged"], v, 1)
+                v = np.where(sub["converged"], v, V.series_not_converged)
                 if "dpdz" in interior:
-                    v = np.where(sub["dpdz_undefined"], contact.DPDZ_UNDEFINED, v)
-                v = np.where(sub["stick_admissible"], v, contact.STICK_NOT_ADMISSIBLE).astype(np.int8)
+                    v = np.where(sub["dpdz_undefined"], V.undefined_direction_dependent_limit, v)
+                v = np.where(sub["stick_admissible"], v, V.stick_zone_not_admissible)
+            v = np.where(admissible, v, V.stick_zone_not_admissible).astype(np.int8)
             out["validity"] = v
         if below and approx is None:
             # the per-case bound covers the stresses of the normal load as well (W38), (W39)
@@ -154,7 +171,7 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
         out["continuous_contact"] = _continuous_contact(table, series)
     if "periodic_correction" in wanted:
         out["periodic_correction"] = contact.periodic_correction(*table, n_harmonics=n_harmonics, rtol=rtol,
-                                                             max_terms=max_terms)[0]
+                                                                 max_terms=max_terms)[0]
     if "johnson_parameter" in wanted:
         out["johnson_parameter"] = contact.johnson_parameter(*table, **exact)
     return {n: out[n] for n in names}
