@@ -40,7 +40,7 @@ def test_values_equal_direct_physics_calls():
     x, z = np.linspace(-2, 2, 9), np.array([0.0, 0.3, 2.0])
     ds = generate({"domain": "nonperiodic", "x": list(x), "z": list(z), "nu": 0.25}, method={"rtol": 1e-10})
     v, _ = contact.subsurface(("sigma_xx", "sigma_zz", "sigma_xz", "sigma_yy"), x, z[:, None], 0.6, *F2.values(),
-                          periodic=False, nu=0.25, rtol=1e-10)
+                              periodic=False, nu=0.25, rtol=1e-10)
     for k in v:
         np.testing.assert_array_equal(ds[k].values, v[k])
 
@@ -50,7 +50,7 @@ def test_points_table_and_compare_shape():
                       "points": {"x": [0.0, 0.5, 1.2], "z": [0.1, 0.2, 0.0]}}).compute()
     assert ds.sigma_zz.dims == ("point",)
     v, _ = contact.subsurface(("sigma_zz",), np.array([0.0, 0.5, 1.2]), np.array([0.1, 0.2, 0.0]), 0.4, *F2.values(),
-                          periodic=True, rtol=1e-10)
+                              periodic=True, rtol=1e-10)
     np.testing.assert_array_equal(ds.sigma_zz.values, v["sigma_zz"])
 
 

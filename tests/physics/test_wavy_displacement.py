@@ -20,7 +20,7 @@ NU = 0.3
 
 def disp(x, z, w, profile=F2, nu=NU):
     ux, uz, info = contact.subsurface_displacement(np.asarray(x, float), np.asarray(z, float), w, *profile,
-                                               periodic=False, nu=nu)
+                                                   periodic=False, nu=nu)
     return ux, uz, info["error_estimate"]
 
 
