@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import stressfields as sf
-from stressfields.physics.wavy import api
+from stressfields.physics.flags import Validity
+from stressfields.physics.wavy import contact
 
 from test_scenario_wavy import _exit_2
 
@@ -30,7 +31,7 @@ def test_depth_is_a_dimension_with_the_surface_at_z_0():
     assert (ds.validity.sel(z=[0.05, 1.0]) == 0).all()
     # the edges x = +-1 at z = 0: dpdz has a direction-dependent limit there
     edge = ds.sel(z=0.0, x=[-1.0, 1.0])
-    assert np.isnan(edge.dpdz).all() and (edge.validity == 4).all()
+    assert np.isnan(edge.dpdz).all() and (edge.validity == Validity.undefined_direction_dependent_limit).all()
     assert "below the surface: complex potential" in ds.sigma_xx.attrs["stressfields_method"]
     assert "stresses below the surface" in ds.sigma_xx.attrs["stressfields_accuracy"]
 
@@ -38,8 +39,8 @@ def test_depth_is_a_dimension_with_the_surface_at_z_0():
 def test_values_equal_direct_physics_calls():
     x, z = np.linspace(-2, 2, 9), np.array([0.0, 0.3, 2.0])
     ds = generate({"domain": "nonperiodic", "x": list(x), "z": list(z), "nu": 0.25}, method={"rtol": 1e-10})
-    v, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz", "sigma_yy"), x, z[:, None], 0.6, *F2.values(),
-                          periodic=False, nu=0.25, rtol=1e-10)
+    v, _ = contact.subsurface(("sigma_xx", "sigma_zz", "sigma_xz", "sigma_yy"), x, z[:, None], 0.6, *F2.values(),
+                              periodic=False, nu=0.25, rtol=1e-10)
     for k in v:
         np.testing.assert_array_equal(ds[k].values, v[k])
 
@@ -48,8 +49,8 @@ def test_points_table_and_compare_shape():
     ds = sf.generate({"scenario": "wavy", "parameters": {**F2, "a": 0.4},
                       "points": {"x": [0.0, 0.5, 1.2], "z": [0.1, 0.2, 0.0]}}).compute()
     assert ds.sigma_zz.dims == ("point",)
-    v, _ = api.subsurface(("sigma_zz",), np.array([0.0, 0.5, 1.2]), np.array([0.1, 0.2, 0.0]), 0.4, *F2.values(),
-                          periodic=True, rtol=1e-10)
+    v, _ = contact.subsurface(("sigma_zz",), np.array([0.0, 0.5, 1.2]), np.array([0.1, 0.2, 0.0]), 0.4, *F2.values(),
+                              periodic=True, rtol=1e-10)
     np.testing.assert_array_equal(ds.sigma_zz.values, v["sigma_zz"])
 
 
@@ -58,7 +59,7 @@ def test_physical_units_and_tangential_force_equals_fx():
     amps = [1e-6, 2e-8]
     a_phys = 0.6 * lam / 2
     pstar = math.pi * E / (1 - nu ** 2) * amps[0] / lam
-    P = float(api.mean_pressure(0.6, amps, F2["wavenumbers"], periodic=True)) * pstar * lam
+    P = float(contact.mean_pressure(0.6, amps, F2["wavenumbers"], periodic=True)) * pstar * lam
     common = {"amplitudes": amps, "wavenumbers": F2["wavenumbers"], "E": E, "nu": nu, "lambda_1": lam, "a": 0.6,
               "x": [0.0, 0.5 * a_phys], "z": [0.2 * a_phys], "mu": 0.4}
     phys = sf.generate({"scenario": "wavy", "parameters": {**common, "tangential_force": 0.5 * 0.4 * P}}).compute()
@@ -109,7 +110,7 @@ def test_displacements_below_the_single_indenter():
     x, z = np.linspace(-2, 2, 9), np.array([0.0, 0.3, 2.0])
     ds = generate({"domain": "nonperiodic", "x": list(x), "z": list(z), "nu": 0.25},
                   method={"rtol": 1e-10}, output={"variables": ["u_x", "u_z", "uz"]})
-    ux, uz, _ = api.subsurface_displacement(x, z[:, None], 0.6, *F2.values(), periodic=False, nu=0.25, rtol=1e-10)
+    ux, uz, _ = contact.subsurface_displacement(x, z[:, None], 0.6, *F2.values(), periodic=False, nu=0.25, rtol=1e-10)
     np.testing.assert_array_equal(ds.u_x.values, ux)
     np.testing.assert_array_equal(ds.u_z.values, uz)
     np.testing.assert_allclose(ds.u_z.sel(z=0.0), ds.uz, rtol=0, atol=1e-13)

@@ -22,7 +22,7 @@ G is evaluated without quadrature:
   T = sum_j B_j (w^j + w^{-j-1}) of (W30); at depth, where the poles' cancellation would cost digits,
   by the Taylor series of S, whose length is chosen a priori from a bound (W39).
 
-Pure NumPy; coordinates broadcast with the table rows of ``api``'s context.
+Pure NumPy; coordinates broadcast with the table rows of ``contact``'s context.
 """
 from __future__ import annotations
 
@@ -203,7 +203,7 @@ class PeriodicPotential:
 
 
 def _folded(t, a):
-    """x in kernel units folded into one period where |x| > pi (as ``api._reduced``), signed."""
+    """x in kernel units folded into one period where |x| > pi (as ``contact._reduced``), signed."""
     X = t * a
     k = np.round(X / (2.0 * np.pi))
     return np.where(np.abs(X) > np.pi, X - k * (2.0 * np.pi), X)
