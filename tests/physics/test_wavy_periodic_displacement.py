@@ -1,0 +1,202 @@
+"""Displacements below the periodic wavy surface (docs/theory/wavy.md (W46)-(W48)), proven by independent
+routes: mpmath quadrature of the periodic line-load displacement kernels (the Flamant kernels summed over all
+periods, datum of the periodic surface displacement) over the pressure (W30) evaluated in mpmath; the surface
+displacement (W15) at z = 0; plane-strain Hooke's law against the product's own stresses by central
+differences (residual falling as h^2); the mean pressure's uniform strain across a period; the closed
+primitive against the series where both hold."""
+from __future__ import annotations
+
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+
+from stressfields.physics.wavy import api
+
+F1 = ([0.5], [1])
+F2 = ([0.5, 0.01], [1, 11])
+F11 = ([0.5] + [0.004] * 10, list(range(1, 12)))
+NU = 0.3
+
+
+def disp(x, z, w, profile=F2, nu=NU, **kw):
+    ux, uz, info = api.subsurface_displacement(np.asarray(x, float), np.asarray(z, float), w, *profile,
+                                               periodic=True, nu=nu, **kw)
+    return ux, uz, info
+
+
+def mp_pressure(w, profile):
+    """p/p* of (W30) in mpmath, the Legendre values by mpmath (not the product's cosine sums), and a."""
+    a = mp.pi * w
+    amps, wns = profile
+    K = max(wns)
+    B = [sum(2 * mp.mpf(d) / amps[0] * n * mp.legendre(n - 1 - j, mp.cos(a)) for d, n in zip(amps, wns) if n > j)
+         for j in range(K)]
+
+    def p(s):
+        return mp.sqrt(mp.sin((a - s) / 2) * mp.sin((a + s) / 2)) * mp.fsum(B[j] * mp.cos((j + 0.5) * s)
+                                                                             for j in range(K))
+    return p, a
+
+
+def periodic_kernels(x, z, p, a, nu):
+    """u_x/Delta_1, u_z/Delta_1 by quadrature over the contact (s = a sin f) of the periodic line-load kernels
+    (kernel units, p* = E* Delta_1/2, 2 mu_s = E* (1 - nu)): per unit load, with y = zeta - s,
+    Re Psi_1 = ln|2 sin(y/2)|/pi (the periodic datum of (W15)), Im Psi_1 = (-(x - s)/2 + arg(1 - e^{iy}))/pi and
+    G_1 = cot(y/2)/(2 pi), then 2 mu_s u_x = (1 - 2 nu) Im Psi + z Re G, 2 mu_s u_z = -2 (1 - nu) Re Psi - z Im G."""
+    re_psi, im_psi, G = _integrals(x, z, p, a)
+    k = 1 / (2 * (1 - nu))
+    return k * ((1 - 2 * nu) * im_psi + z * G.real), -re_psi - k * z * G.imag
+
+
+CASES = [(1e-3, F1), (0.3, F1), (0.3, F2), (0.999, F2), (0.6, F11)]
+
+
+@pytest.mark.parametrize("w, profile", CASES, ids=lambda v: str(v) if isinstance(v, float) else f"{len(v[1])}h")
+def test_against_periodic_kernel_quadrature(w, profile):
+    """Nine points per case (45 over 1, 2 and 11 harmonics, 2a/lambda_1 = 1e-3 .. 0.999): depths 1e-9 to
+    5 lambda_1, near the surface (closed primitive) and deep (series), inside, at and outside the contact
+    and beyond one period; each within its error_estimate plus the quadrature's 1e-14."""
+    mp.mp.dps = 17
+    p, a = mp_pressure(w, profile)
+    a = float(a)
+    zk = np.array([1e-9, 1e-9, 1e-6, 0.02, 0.15, 0.5, 2.0, 7.0, 10 * math.pi])     # kernel units (lambda_1 = 2 pi)
+    xk = np.array([0.3 * a, 2.0, -0.9 * a, a, -1.2, 0.4 + 2 * math.pi, 2.9, -5.0, 1.0])
+    ux, uz, info = disp(xk / a, zk / a, w, profile)
+    err = info["error_estimate"]
+    assert info["converged"].all() and (err <= 1e-12).all(), err.max()
+    for i in range(xk.size):
+        rx, rz = periodic_kernels(xk[i], zk[i], p, a, NU)
+        tol = err[i] + 1e-14 * (1.0 + abs(rz) + abs(rx))
+        assert abs(ux[i] - rx) <= tol, (xk[i], zk[i], ux[i], rx)
+        assert abs(uz[i] - rz) <= tol, (xk[i], zk[i], uz[i], rz)
+
+
+@pytest.mark.parametrize("w, profile", CASES, ids=lambda v: str(v) if isinstance(v, float) else f"{len(v[1])}h")
+def test_surface_is_the_surface_displacement(w, profile):
+    """z = 0: u_z is the periodic surface displacement (W15) to 1e-13 Delta_1, inside, on the edge, outside the
+    contact and in other periods; u_x there is -(1 - 2 nu)/(2 (1 - nu)) int_0^x p (Johnson's, odd in x), here
+    at x = a and half a period against the mean pressure: int_0^pi p = pi p_inf."""
+    t = np.array([0.0, 0.3, -0.7, 1.0, -1.0, 1.2, 0.99 / w, -1.0 / w, 2.5 / w, -3.3 / w])
+    ux, uz, _ = disp(t, 0.0, w, profile)
+    ref = api.displacement(t, w, *profile, periodic=True)[0]
+    np.testing.assert_allclose(uz, ref, rtol=0, atol=1e-13)
+    pinf = float(api.mean_pressure(w, *profile, periodic=True))
+    k = (1 - 2 * NU) / (2 * (1 - NU))
+    assert abs(ux[0]) <= 1e-15
+    assert abs(ux[7] - k * math.pi * pinf) <= 1e-13          # x = -pi: +k int_0^pi p
+    ux5, _, _ = disp(np.array([1.0, -1.0]), 0.0, w, profile, nu=0.5)
+    np.testing.assert_array_equal(ux5, 0.0)                # incompressible: no lateral surface displacement
+
+
+def test_mean_pressure_strain_across_a_period():
+    """The k = 0 mode: u_z is periodic in x at every depth, and u_x(x + lambda_1) - u_x(x) =
+    -(1 - 2 nu) p_inf lambda_1/(2 (1 - nu)) (the uniform strain of sigma_xx = sigma_zz = -p_inf), with p_inf
+    the closed mean pressure (W11); u_z(z) - u_z(z') far below: -(1 - 2 nu)/(2 (1 - nu)) p_inf (z - z')."""
+    w = 0.4
+    a = math.pi * w
+    t = np.array([0.2, -0.8, 1.5])
+    per = 2 * math.pi / a
+    pinf = float(api.mean_pressure(w, *F2, periodic=True))
+    k = (1 - 2 * NU) / (2 * (1 - NU))
+    for zt in (0.0, 0.05, 1.0, 8.0):
+        ux0, uz0, _ = disp(t, zt, w)
+        ux1, uz1, _ = disp(t + per, zt, w)
+        np.testing.assert_allclose(uz1, uz0, rtol=0, atol=1e-13)
+        np.testing.assert_allclose(ux1 - ux0, -k * 2 * math.pi * pinf, rtol=0, atol=1e-13)
+    _, d1, _ = disp(0.3, 60.0 / a, w)
+    _, d2, _ = disp(0.3, 70.0 / a, w)
+    assert abs((d2 - d1) + k * pinf * 10.0) <= 1e-13
+
+
+def hooke_residual(x, z, w, prof, h, mu=0.0, fx=0.0):
+    """The residual of plane-strain Hooke's law between central differences of u (step h in x/a, z/a) and the
+    product's stresses (p* units; t = x/a): 2 (1 - nu)/a du_x/dt = sxx - nu (sxx + szz), likewise zz, and
+    (1 - nu)/a (du_x/dzt + du_z/dt) = sxz."""
+    a = math.pi * w
+    s, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=True, mu=mu, fx=fx)
+    sxx, szz, sxz = (float(s[k]) for k in ("sigma_xx", "sigma_zz", "sigma_xz"))
+    tr = sxx + szz
+    X = np.array([x + h, x - h, x, x])
+    Z = np.array([z, z, z + h, z - h])
+    ux, uz, _ = disp(X, Z, w, prof, mu=mu, fx=fx)
+    exx = (ux[0] - ux[1]) / (2 * h) / a
+    ezz = (uz[2] - uz[3]) / (2 * h) / a
+    gxz = ((ux[2] - ux[3]) + (uz[0] - uz[1])) / (2 * h) / a
+    return np.max(np.abs([2 * (1 - NU) * exx - (sxx - NU * tr), 2 * (1 - NU) * ezz - (szz - NU * tr),
+                          (1 - NU) * gxz - sxz]))
+
+
+@pytest.mark.parametrize("x, z, w, prof, mu, fx", [(0.4, 0.3, 0.3, F2, 0.0, 0.0), (1.3, 0.1, 0.6, F11, 0.0, 0.0),
+                                                   (-0.9, 1.5, 0.3, F2, 0.0, 0.0), (0.5, 0.4, 0.3, F2, 0.4, 0.5)])
+def test_hooke_against_the_stresses_falls_as_h_squared(x, z, w, prof, mu, fx):
+    """Central differences of u against the product's stresses (closed and series routes, normal and combined
+    load): the residual is visible at h = 4e-2 and falls by about 16 at h = 1e-2."""
+    r1, r2 = hooke_residual(x, z, w, prof, 4e-2, mu, fx), hooke_residual(x, z, w, prof, 1e-2, mu, fx)
+    assert r1 > 1e-9
+    assert 12.0 < r1 / r2 < 20.0, (r1, r2)
+
+
+def test_closed_primitive_meets_the_series_at_the_switch():
+    """Where both routes hold (around the switch depth), the closed primitive and the series agree within the
+    stated bound; the displacements are continuous across the switch."""
+    for w, prof in ((0.3, F2), (0.6, F11), (1e-3, F1)):
+        c = api._interior_ctx(w, *prof, True, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS)
+        pot = api._interior.PeriodicPotential(c.table, c.dr, c.n, c.rtol)
+        a, zs = float(c.table.a[0]), float(pot.z_switch[0])
+        t = np.array([0.3, -0.7, 1.3, 2.0 / w])
+        Z = np.full(t.shape, 1.2 * zs)
+        from stressfields.physics.wavy.interior import _folded
+        X = _folded(t, a)
+        closed, _ = pot._closed_primitive(0, t, X, Z, a * t)
+        series, _ = pot._series_primitive(0, t, X, Z, a * t)
+        assert np.max(np.abs(closed - series)) <= pot.closed_primitive_bound(np.zeros(t.size, int), Z).max() + pot.err_series[0]
+        ux, uz, info = disp(t, np.array([zs * (1 - 1e-12), zs * (1 + 1e-12)])[:, None] / a, w, prof)
+        assert np.max(np.abs(np.diff(uz, axis=0))) <= 2 * info["error_estimate"].max()
+        assert np.max(np.abs(np.diff(ux, axis=0))) <= 2 * info["error_estimate"].max()
+
+
+def test_partial_slip_against_periodic_kernel_quadrature():
+    """Combined load (fx = 0.6, mu = 0.3): the product less its normal part against quadrature of the periodic
+    tangential kernels (per unit load along +x: 2 mu_s u_x = -2 (1 - nu) Re Psi_1 + z Im G_1,
+    2 mu_s u_z = -(1 - 2 nu) Im Psi_1 + z Re G_1) over q = mu [p(s; a) - p(s; c)]."""
+    mp.mp.dps = 15
+    w, prof, mu, fx = 0.3, F2, 0.3, 0.6
+    ratio = float(api.stick_half_width(w, *prof, fx, periodic=True)[0])
+    pa, a = mp_pressure(w, prof)
+    pc, c = mp_pressure(w * ratio, prof)
+    a = float(a)
+    t = np.array([0.0, 0.7, -1.4, 2.5])
+    zt = np.array([1e-9, 0.3, 0.05, 4.0])
+    ux, uz, info = disp(t, zt, w, prof, mu=mu, fx=fx)
+    nx, nz, _ = disp(t, zt, w, prof)
+    k = 1 / (2 * (1 - NU))
+    for i in range(t.size):
+        # the normal-load kernels give (k (1 - 2 nu) Im Psi + k z Re G, -Re Psi - k z Im G) per pressure; the
+        # tangential ones recombine the same three integrals
+        ra = _integrals(a * t[i], a * zt[i], pa, a)
+        rc = _integrals(a * t[i], a * zt[i], pc, float(c))
+        re_psi, im_psi, G = (mu * (u - v) for u, v in zip(ra, rc))
+        z = a * zt[i]
+        rx = -re_psi + k * z * G.imag
+        rz = k * (-(1 - 2 * NU) * im_psi + z * G.real)
+        tol = info["error_estimate"][i] + 1e-14
+        assert abs(ux[i] - nx[i] - rx) <= tol, (t[i], zt[i], ux[i] - nx[i], rx)
+        assert abs(uz[i] - nz[i] - rz) <= tol, (t[i], zt[i], uz[i] - nz[i], rz)
+
+
+def _integrals(x, z, p, a):
+    """(Re Psi, Im Psi, G) of the pressure p by quadrature of the periodic kernels (see ``periodic_kernels``)."""
+    x, z = mp.mpf(x), mp.mpf(z)
+    zeta = mp.mpc(x, z)
+    xf = x - 2 * mp.pi * mp.nint(x / (2 * mp.pi))
+    br = [-mp.pi / 2, mp.asin(xf / a), mp.pi / 2] if abs(xf) < a else [-mp.pi / 2, mp.pi / 2]
+
+    def quad(kernel):
+        return mp.quad(lambda f: p(a * mp.sin(f)) * kernel(a * mp.sin(f)) * a * mp.cos(f), br)
+
+    re_psi = quad(lambda s: mp.log(abs(2 * mp.sin((zeta - s) / 2)))) / mp.pi
+    im_psi = quad(lambda s: -(x - s) / 2 + mp.arg(1 - mp.exp(1j * (zeta - s)))) / mp.pi
+    G = quad(lambda s: mp.cot((zeta - s) / 2)) / (2 * mp.pi)
+    return float(mp.re(re_psi)), float(mp.re(im_psi)), complex(G)
