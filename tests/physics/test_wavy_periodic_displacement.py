@@ -1,12 +1,15 @@
 """Displacements below the periodic wavy surface (docs/theory/wavy.md (W46)-(W48)), proven by independent
 routes: mpmath quadrature of the periodic line-load displacement kernels (the Flamant kernels summed over all
-periods, datum of the periodic surface displacement) over the pressure (W30) evaluated in mpmath; the surface
+periods, datum of the periodic surface displacement) over the pressure (W30) evaluated in mpmath (stored,
+tests/data/wavy_periodic_displacement.json, and a few live points); the surface
 displacement (W15) at z = 0; plane-strain Hooke's law against the product's own stresses by central
 differences (residual falling as h^2); the mean pressure's uniform strain across a period; the closed
 primitive against the series where both hold."""
 from __future__ import annotations
 
+import json
 import math
+from pathlib import Path
 
 import mpmath as mp
 import numpy as np
@@ -14,6 +17,7 @@ import pytest
 
 from stressfields.physics.wavy import api
 
+DATA = Path(__file__).resolve().parents[1] / "data" / "wavy_periodic_displacement.json"
 F1 = ([0.5], [1])
 F2 = ([0.5, 0.01], [1, 11])
 F11 = ([0.5] + [0.004] * 10, list(range(1, 12)))
@@ -50,27 +54,74 @@ def periodic_kernels(x, z, p, a, nu):
     return k * ((1 - 2 * nu) * im_psi + z * G.real), -re_psi - k * z * G.imag
 
 
-CASES = [(1e-3, F1), (0.3, F1), (0.3, F2), (0.999, F2), (0.6, F11)]
+def _reference():
+    return json.loads(DATA.read_text())
 
 
-@pytest.mark.parametrize("w, profile", CASES, ids=lambda v: str(v) if isinstance(v, float) else f"{len(v[1])}h")
-def test_against_periodic_kernel_quadrature(w, profile):
-    """Nine points per case (45 over 1, 2 and 11 harmonics, 2a/lambda_1 = 1e-3 .. 0.999): depths 1e-9 to
-    5 lambda_1, near the surface (closed primitive) and deep (series), inside, at and outside the contact
-    and beyond one period; each within its error_estimate plus the quadrature's 1e-14."""
-    mp.mp.dps = 17
-    p, a = mp_pressure(w, profile)
-    a = float(a)
-    zk = np.array([1e-9, 1e-9, 1e-6, 0.02, 0.15, 0.5, 2.0, 7.0, 10 * math.pi])     # kernel units (lambda_1 = 2 pi)
-    xk = np.array([0.3 * a, 2.0, -0.9 * a, a, -1.2, 0.4 + 2 * math.pi, 2.9, -5.0, 1.0])
-    ux, uz, info = disp(xk / a, zk / a, w, profile)
+def _profile(ref, name):
+    p = ref["profiles"][name]
+    return p["amplitudes"], p["wavenumbers"]
+
+
+def test_reference_covers_the_brief():
+    ref = _reference()
+    cases = ref["normal"]
+    assert sum(len(c["points"]) for c in cases) >= 40
+    assert {len(_profile(ref, c["profile"])[1]) for c in cases} == {1, 2, 11}
+    widths = sorted(c["two_a_over_lambda1"] for c in cases)
+    assert widths[0] <= 1e-3 and widths[-1] >= 0.999
+    depths = [np.array(c["points"])[:, 1] * math.pi * c["two_a_over_lambda1"] for c in cases]
+    assert min(d.min() for d in depths) <= 1e-9 * 1.0001 and max(d.max() for d in depths) >= 10 * math.pi * 0.9999
+    assert ref["meta"]["nu"] == NU
+
+
+@pytest.mark.parametrize("case", _reference()["normal"], ids=lambda c: f"{c['profile']}-{c['two_a_over_lambda1']}")
+def test_against_stored_quadrature(case):
+    """Nine points per case (1, 2 and 11 harmonics, 2a/lambda_1 = 1e-3 .. 0.999): depths 1e-9 to 5 lambda_1,
+    near the surface (closed primitive) and deep (series), inside, at and outside the contact and beyond one
+    period; each within its error_estimate (<= 1e-12 Delta_1) plus the reference's 1e-14."""
+    P = np.array(case["points"])
+    prof = _profile(_reference(), case["profile"])
+    ux, uz, info = disp(P[:, 0], P[:, 1], case["two_a_over_lambda1"], prof)
     err = info["error_estimate"]
     assert info["converged"].all() and (err <= 1e-12).all(), err.max()
+    tol = err + 1e-14 * (1.0 + np.abs(P[:, 2]) + np.abs(P[:, 3]))
+    assert (np.abs(ux - P[:, 2]) <= tol).all(), np.abs(ux - P[:, 2]).max()
+    assert (np.abs(uz - P[:, 3]) <= tol).all(), np.abs(uz - P[:, 3]).max()
+
+
+@pytest.mark.parametrize("case", _reference()["slip"], ids=lambda c: f"{c['profile']}-{c['two_a_over_lambda1']}")
+def test_partial_slip_against_stored_quadrature(case):
+    """Combined load: the product less its normal part against the quadrature of the periodic tangential
+    kernels over mu [p(s; a) - p(s; c)], with the stick width solved in mpmath (which the product's meets)."""
+    P = np.array(case["points"])
+    w, mu, fx = case["two_a_over_lambda1"], case["mu"], case["fx"]
+    prof = _profile(_reference(), case["profile"])
+    ratio = float(api.stick_half_width(w, *prof, fx, periodic=True)[0])
+    assert abs(ratio - case["stick_over_a"]) <= 1e-12
+    ux, uz, info = disp(P[:, 0], P[:, 1], w, prof, mu=mu, fx=fx)
+    nx, nz, _ = disp(P[:, 0], P[:, 1], w, prof)
+    tol = info["error_estimate"] + 1e-14 * (1.0 + np.abs(P[:, 2]) + np.abs(P[:, 3]))
+    assert (np.abs(ux - nx - P[:, 2]) <= tol).all(), np.abs(ux - nx - P[:, 2]).max()
+    assert (np.abs(uz - nz - P[:, 3]) <= tol).all(), np.abs(uz - nz - P[:, 3]).max()
+
+
+def test_live_quadrature():
+    """Three points by quadrature here (not the stored file): two harmonics, near the surface inside the
+    contact, mid-depth outside it, and deep in the next period."""
+    mp.mp.dps = 15
+    w = 0.45
+    p, a = mp_pressure(w, F2)
+    a = float(a)
+    xk, zk = np.array([0.4 * a, 2.5, 7.0]), np.array([1e-3, 0.4, 3.0])
+    ux, uz, info = disp(xk / a, zk / a, w)
     for i in range(xk.size):
         rx, rz = periodic_kernels(xk[i], zk[i], p, a, NU)
-        tol = err[i] + 1e-14 * (1.0 + abs(rz) + abs(rx))
-        assert abs(ux[i] - rx) <= tol, (xk[i], zk[i], ux[i], rx)
-        assert abs(uz[i] - rz) <= tol, (xk[i], zk[i], uz[i], rz)
+        tol = info["error_estimate"][i] + 1e-14 * (1.0 + abs(rz) + abs(rx))
+        assert abs(ux[i] - rx) <= tol and abs(uz[i] - rz) <= tol, (xk[i], zk[i], ux[i] - rx, uz[i] - rz)
+
+
+CASES = [(1e-3, F1), (0.3, F2), (0.999, F2), (0.6, F11)]
 
 
 @pytest.mark.parametrize("w, profile", CASES, ids=lambda v: str(v) if isinstance(v, float) else f"{len(v[1])}h")
@@ -155,35 +206,6 @@ def test_closed_primitive_meets_the_series_at_the_switch():
         ux, uz, info = disp(t, np.array([zs * (1 - 1e-12), zs * (1 + 1e-12)])[:, None] / a, w, prof)
         assert np.max(np.abs(np.diff(uz, axis=0))) <= 2 * info["error_estimate"].max()
         assert np.max(np.abs(np.diff(ux, axis=0))) <= 2 * info["error_estimate"].max()
-
-
-def test_partial_slip_against_periodic_kernel_quadrature():
-    """Combined load (fx = 0.6, mu = 0.3): the product less its normal part against quadrature of the periodic
-    tangential kernels (per unit load along +x: 2 mu_s u_x = -2 (1 - nu) Re Psi_1 + z Im G_1,
-    2 mu_s u_z = -(1 - 2 nu) Im Psi_1 + z Re G_1) over q = mu [p(s; a) - p(s; c)]."""
-    mp.mp.dps = 15
-    w, prof, mu, fx = 0.3, F2, 0.3, 0.6
-    ratio = float(api.stick_half_width(w, *prof, fx, periodic=True)[0])
-    pa, a = mp_pressure(w, prof)
-    pc, c = mp_pressure(w * ratio, prof)
-    a = float(a)
-    t = np.array([0.0, 0.7, -1.4, 2.5])
-    zt = np.array([1e-9, 0.3, 0.05, 4.0])
-    ux, uz, info = disp(t, zt, w, prof, mu=mu, fx=fx)
-    nx, nz, _ = disp(t, zt, w, prof)
-    k = 1 / (2 * (1 - NU))
-    for i in range(t.size):
-        # the normal-load kernels give (k (1 - 2 nu) Im Psi + k z Re G, -Re Psi - k z Im G) per pressure; the
-        # tangential ones recombine the same three integrals
-        ra = _integrals(a * t[i], a * zt[i], pa, a)
-        rc = _integrals(a * t[i], a * zt[i], pc, float(c))
-        re_psi, im_psi, G = (mu * (u - v) for u, v in zip(ra, rc))
-        z = a * zt[i]
-        rx = -re_psi + k * z * G.imag
-        rz = k * (-(1 - 2 * NU) * im_psi + z * G.real)
-        tol = info["error_estimate"][i] + 1e-14
-        assert abs(ux[i] - nx[i] - rx) <= tol, (t[i], zt[i], ux[i] - nx[i], rx)
-        assert abs(uz[i] - nz[i] - rz) <= tol, (t[i], zt[i], uz[i] - nz[i], rz)
 
 
 def _integrals(x, z, p, a):

@@ -699,15 +699,15 @@ def subsurface_peaks(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
 def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                             n_harmonics=None, nu=0.3, mu=0.0, fx=0.0, rtol=DEFAULT_RTOL,
                             max_terms=DEFAULT_MAX_TERMS):
-    """u_x/Delta_1 and u_z/Delta_1 at (x/a, z/a), z >= 0 (u_z positive into the body, u_x along +x), single
-    indenter, docs/theory/wavy.md (W45); returns (u_x, u_z, info).
+    """u_x/Delta_1 and u_z/Delta_1 at (x/a, z/a), z >= 0 (u_z positive into the body, u_x along +x),
+    docs/theory/wavy.md (W45)-(W48); returns (u_x, u_z, info).
 
     Normal load, and under a tangential load fx = Q/(mu P) with friction coefficient mu the displacements of
     the shear traction q = mu [p(x; a) - p(x; c)] of ``subsurface`` added (uncoupled).  Datum: that of the
     surface ``displacement`` (the log kernel ln|x - xi| in the lambda_1 = 2 pi unit), which u_z of the normal
     load reproduces at z = 0 and u_x of the shear traction likewise; the other component is odd about the
     load's centre: at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) [int_x^inf - int_-inf^x] of the traction (mu_s the
-    shear modulus).  Periodic surface (W46)-(W48): the same relations with the periodic primitive, whose datum is
+    shear modulus); single indenter by the closed primitive in omega (W45).  Periodic surface (W46)-(W48): the same relations with the periodic primitive, whose datum is
     that of the periodic uz (kernel ln|2 sin((x - xi)/2)|: u_z at z = 0 is uz, of zero mean over a period); the
     mean pressure's k = 0 mode adds the uniform strain of sigma_xx = sigma_zz = -p_inf, so u_x carries
     -(1 - 2 nu) p_inf x/(2 mu_s) and is not periodic.  info: "error_estimate" a bound per point (Delta_1 units),
