@@ -15,7 +15,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from stressfields.physics.wavy import api
+from stressfields.physics.wavy import api, interior
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "wavy_periodic_displacement.json"
 F1 = ([0.5], [1])
@@ -189,20 +189,22 @@ def test_hooke_against_the_stresses_falls_as_h_squared(x, z, w, prof, mu, fx):
     assert 12.0 < r1 / r2 < 20.0, (r1, r2)
 
 
-def test_closed_primitive_meets_the_series_at_the_switch():
-    """Where both routes hold (around the switch depth), the closed primitive and the series agree within the
-    stated bound; the displacements are continuous across the switch."""
-    for w, prof in ((0.3, F2), (0.6, F11), (1e-3, F1)):
+def test_closed_primitive_meets_the_series_below_the_switch():
+    """Below the switch depth z_s, where the series holds within its bound, the closed primitive (which the
+    product uses only above z_s) agrees with it within the closed form's bound (W48) at that depth, whose
+    rounding grows there as e^((j+1) z); and the displacements are continuous across the switch."""
+    for w, prof in ((0.3, F2), (0.6, F11), (1e-3, F1), (0.999, F2)):
         c = api._interior_ctx(w, *prof, True, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS)
-        pot = api._interior.PeriodicPotential(c.table, c.dr, c.n, c.rtol)
+        pot = interior.PeriodicPotential(c.table, c.dr, c.n, c.rtol)
         a, zs = float(c.table.a[0]), float(pot.z_switch[0])
-        t = np.array([0.3, -0.7, 1.3, 2.0 / w])
-        Z = np.full(t.shape, 1.2 * zs)
-        from stressfields.physics.wavy.interior import _folded
-        X = _folded(t, a)
-        closed, _ = pot._closed_primitive(0, t, X, Z, a * t)
-        series, _ = pot._series_primitive(0, t, X, Z, a * t)
-        assert np.max(np.abs(closed - series)) <= pot.closed_primitive_bound(np.zeros(t.size, int), Z).max() + pot.err_series[0]
+        t = np.array([0.3, -0.7, 1.3, 2.0 / w, 1.0, -1.0 / w])
+        X = interior._folded(t, a)
+        for k in (1.2, 2.0, 4.0):
+            Z = np.full(t.shape, k * zs)
+            closed, _ = pot._closed_primitive(0, t, X, Z, a * t)
+            series, _ = pot._series_primitive(0, t, X, Z, a * t)
+            bound = pot.closed_primitive_bound(np.zeros(t.size, int), Z) + pot.err_series[0]
+            assert (np.abs(closed - series) <= bound).all(), (w, k, np.abs(closed - series).max())
         ux, uz, info = disp(t, np.array([zs * (1 - 1e-12), zs * (1 + 1e-12)])[:, None] / a, w, prof)
         assert np.max(np.abs(np.diff(uz, axis=0))) <= 2 * info["error_estimate"].max()
         assert np.max(np.abs(np.diff(ux, axis=0))) <= 2 * info["error_estimate"].max()

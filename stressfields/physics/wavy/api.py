@@ -707,10 +707,11 @@ def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, 
     surface ``displacement`` (the log kernel ln|x - xi| in the lambda_1 = 2 pi unit), which u_z of the normal
     load reproduces at z = 0 and u_x of the shear traction likewise; the other component is odd about the
     load's centre: at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) [int_x^inf - int_-inf^x] of the traction (mu_s the
-    shear modulus); single indenter by the closed primitive in omega (W45).  Periodic surface (W46)-(W48): the same relations with the periodic primitive, whose datum is
-    that of the periodic uz (kernel ln|2 sin((x - xi)/2)|: u_z at z = 0 is uz, of zero mean over a period); the
-    mean pressure's k = 0 mode adds the uniform strain of sigma_xx = sigma_zz = -p_inf, so u_x carries
-    -(1 - 2 nu) p_inf x/(2 mu_s) and is not periodic.  info: "error_estimate" a bound per point (Delta_1 units),
+    shear modulus); single indenter by the closed primitive in omega (W45).  Periodic surface (W46)-(W48): the
+    same relations with the periodic primitive, whose datum is that of the periodic uz (kernel
+    ln|2 sin((x - xi)/2)|: u_z at z = 0 is uz, of zero mean over a period); the mean pressure's k = 0 mode adds
+    the uniform strain of sigma_xx = sigma_zz = -p_inf, so u_x carries -(1 - 2 nu) p_inf x/(2 mu_s) and is not
+    periodic.  info: "error_estimate" a bound per point (Delta_1 units),
     "converged" as the stresses'."""
     c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     shape, (t, zt, nu, mu, fx, row, a, N) = _points(c, x_over_a, z_over_a, nu, mu, fx)
