@@ -7,6 +7,7 @@ differences (residual falling as h^2); the mean pressure's uniform strain across
 primitive against the series where both hold."""
 from __future__ import annotations
 
+import importlib.util
 import json
 import math
 from pathlib import Path
@@ -30,28 +31,14 @@ def disp(x, z, w, profile=F2, nu=NU, **kw):
     return ux, uz, info
 
 
-def mp_pressure(w, profile):
-    """p/p* of (W30) in mpmath, the Legendre values by mpmath (not the product's cosine sums), and a."""
-    a = mp.pi * w
-    amps, wns = profile
-    K = max(wns)
-    B = [sum(2 * mp.mpf(d) / amps[0] * n * mp.legendre(n - 1 - j, mp.cos(a)) for d, n in zip(amps, wns) if n > j)
-         for j in range(K)]
-
-    def p(s):
-        return mp.sqrt(mp.sin((a - s) / 2) * mp.sin((a + s) / 2)) * mp.fsum(B[j] * mp.cos((j + 0.5) * s)
-                                                                             for j in range(K))
-    return p, a
-
-
-def periodic_kernels(x, z, p, a, nu):
-    """u_x/Delta_1, u_z/Delta_1 by quadrature over the contact (s = a sin f) of the periodic line-load kernels
-    (kernel units, p* = E* Delta_1/2, 2 mu_s = E* (1 - nu)): per unit load, with y = zeta - s,
-    Re Psi_1 = ln|2 sin(y/2)|/pi (the periodic datum of (W15)), Im Psi_1 = (-(x - s)/2 + arg(1 - e^{iy}))/pi and
-    G_1 = cot(y/2)/(2 pi), then 2 mu_s u_x = (1 - 2 nu) Im Psi + z Re G, 2 mu_s u_z = -2 (1 - nu) Re Psi - z Im G."""
-    re_psi, im_psi, G = _integrals(x, z, p, a)
-    k = 1 / (2 * (1 - nu))
-    return k * ((1 - 2 * nu) * im_psi + z * G.real), -re_psi - k * z * G.imag
+def _generator():
+    """The script that wrote the stored reference (tests/data), for its mpmath routes: the pressure (W30) with
+    mpmath's Legendre values and the quadrature of the periodic line-load kernels (it imports no stressfields)."""
+    spec = importlib.util.spec_from_file_location("make_wavy_periodic_displacement",
+                                                  DATA.with_name("make_wavy_periodic_displacement.py"))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def _reference():
@@ -107,16 +94,17 @@ def test_partial_slip_against_stored_quadrature(case):
 
 
 def test_live_quadrature():
-    """Three points by quadrature here (not the stored file): two harmonics, near the surface inside the
-    contact, mid-depth outside it, and deep in the next period."""
+    """Three points by quadrature here (not the stored file), with the reference script's routes: two
+    harmonics, near the surface inside the contact, mid-depth outside it, and deep in the next period."""
+    gen = _generator()
     mp.mp.dps = 15
     w = 0.45
-    p, a = mp_pressure(w, F2)
+    p, a = gen.pressure(w, F2)
     a = float(a)
     xk, zk = np.array([0.4 * a, 2.5, 7.0]), np.array([1e-3, 0.4, 3.0])
     ux, uz, info = disp(xk / a, zk / a, w)
     for i in range(xk.size):
-        rx, rz = periodic_kernels(xk[i], zk[i], p, a, NU)
+        rx, rz = (float(v) for v in gen.normal(mp.mpf(xk[i]), mp.mpf(zk[i]), p, mp.mpf(a)))
         tol = info["error_estimate"][i] + 1e-14 * (1.0 + abs(rz) + abs(rx))
         assert abs(ux[i] - rx) <= tol and abs(uz[i] - rz) <= tol, (xk[i], zk[i], ux[i] - rx, uz[i] - rz)
 
@@ -201,26 +189,10 @@ def test_closed_primitive_meets_the_series_below_the_switch():
         X = interior._folded(t, a)
         for k in (1.2, 2.0, 4.0):
             Z = np.full(t.shape, k * zs)
-            closed, _ = pot._closed_primitive(0, t, X, Z, a * t)
-            series, _ = pot._series_primitive(0, t, X, Z, a * t)
+            closed, _ = pot._closed_primitive(0, t, X, Z)
+            series, _ = pot._series_primitive(0, t, X, Z)
             bound = pot.closed_primitive_bound(np.zeros(t.size, int), Z) + pot.err_series[0]
             assert (np.abs(closed - series) <= bound).all(), (w, k, np.abs(closed - series).max())
         ux, uz, info = disp(t, np.array([zs * (1 - 1e-12), zs * (1 + 1e-12)])[:, None] / a, w, prof)
         assert np.max(np.abs(np.diff(uz, axis=0))) <= 2 * info["error_estimate"].max()
         assert np.max(np.abs(np.diff(ux, axis=0))) <= 2 * info["error_estimate"].max()
-
-
-def _integrals(x, z, p, a):
-    """(Re Psi, Im Psi, G) of the pressure p by quadrature of the periodic kernels (see ``periodic_kernels``)."""
-    x, z = mp.mpf(x), mp.mpf(z)
-    zeta = mp.mpc(x, z)
-    xf = x - 2 * mp.pi * mp.nint(x / (2 * mp.pi))
-    br = [-mp.pi / 2, mp.asin(xf / a), mp.pi / 2] if abs(xf) < a else [-mp.pi / 2, mp.pi / 2]
-
-    def quad(kernel):
-        return mp.quad(lambda f: p(a * mp.sin(f)) * kernel(a * mp.sin(f)) * a * mp.cos(f), br)
-
-    re_psi = quad(lambda s: mp.log(abs(2 * mp.sin((zeta - s) / 2)))) / mp.pi
-    im_psi = quad(lambda s: -(x - s) / 2 + mp.arg(1 - mp.exp(1j * (zeta - s)))) / mp.pi
-    G = quad(lambda s: mp.cot((zeta - s) / 2)) / (2 * mp.pi)
-    return float(mp.re(re_psi)), float(mp.re(im_psi)), complex(G)

@@ -165,18 +165,24 @@ class PeriodicPotential:
     def evaluate(self, row, t, zt):
         """(G, dG/dt, err) at x/a = t, z/a = zt > 0 for table rows ``row`` (1-D arrays of one length);
         dG/dt is the derivative along x/a (user units)."""
+        G, Gt, _, _ = self._routed(row, t, zt, self._closed, self._series)
+        return G, Gt, self.err[row]
+
+    def _routed(self, row, t, zt, closed, deep_route):
+        """Two complex values per point, by ``closed`` above the switch depth and ``deep_route`` below it (each
+        called as route(row, t, folded kernel x, kernel depth) for one row at a time: its coefficients are then
+        scalars, not gathered per point); also the kernel depth and which points are deep."""
         a = self.table.a[row]
         Xk, Z = _folded(t, a), a * zt
         deep = Z > self.z_switch[row]
-        G = np.empty(t.shape, complex)
-        Gt = np.empty(t.shape, complex)
-        # one row at a time: its coefficients are then scalars, not gathered per point
+        first = np.empty(t.shape, complex)
+        second = np.empty(t.shape, complex)
         for r in np.unique(row):
             one = row == r
-            for sel, route in ((one & ~deep, self._closed), (one & deep, self._series)):
+            for sel, route in ((one & ~deep, closed), (one & deep, deep_route)):
                 if sel.any():
-                    G[sel], Gt[sel] = route(int(r), t[sel], Xk[sel], Z[sel])
-        return G, Gt, self.err[row]
+                    first[sel], second[sel] = route(int(r), t[sel], Xk[sel], Z[sel])
+        return first, second, Z, deep
 
     def _closed(self, row, t, X, Z):
         """The closed finite form near the surface (W37): S = X T/4 - sum_k f_{-k} (w^{-k} - w^k), one row."""
@@ -210,17 +216,8 @@ class PeriodicPotential:
         mean pressure's term is not periodic), the potential G, and a bound of Psi's error plus z times G's
         (kernel units), i.e. of both displacement components (W48).  Near the surface the closed primitive
         of X T/(4 w) by the ladder (W47); at depth the series of the same length as the stresses'."""
-        a = self.table.a[row]
-        Xk, Z = _folded(t, a), a * zt
-        xu = a * t
-        deep = Z > self.z_switch[row]
-        Psi = np.empty(t.shape, complex)
-        G = np.empty(t.shape, complex)
-        for r in np.unique(row):
-            one = row == r
-            for sel, route in ((one & ~deep, self._closed_primitive), (one & deep, self._series_primitive)):
-                if sel.any():
-                    Psi[sel], G[sel] = route(int(r), t[sel], Xk[sel], Z[sel], xu[sel])
+        Psi, G, Z, deep = self._routed(row, t, zt, self._closed_primitive, self._series_primitive)
+        xu = self.table.a[row] * t
         # the bound of Psi and z G (W48): the closed form's at the point's depth, or the series' at the switch;
         # the unfolded mean-pressure term's rounding, 2 u p_inf |zeta|, and that of s_0 times the depth
         err = np.where(deep, self.err_series[row], self.closed_primitive_bound(row, Z)) \
@@ -249,13 +246,14 @@ class PeriodicPotential:
             e_g = 2.0 * _U * np.sum(size * (j + 2.0), axis=1) + 2.0 * self._sumerrB[row] * eK
         return e_psi + Z * e_g
 
-    def _closed_primitive(self, row, t, X, Z, xu):
+    def _closed_primitive(self, row, t, X, Z):
         """The closed primitive near the surface (W46), (W47), one row: with S = X T/4 - sum_k f_-k (w^-k - w^k),
         Psi = -(1/4) sum_j B_j (I_(j-1) + I_(-j-2)) - sum_k f_-k (w^-k + w^k)/k + const,
         I_0 = (u X + s^2 L_1)/2, I_-1 = X - c L_1 - L_2 + log w, u = w - c, L_1 = log(u + X),
         L_2 = log(1 - c w + X) (c = cos a, s = sin a), log w = -z + i x with the unfolded x."""
         a = float(self.table.a[row])
         c, sa = np.cos(a), np.sin(a)
+        xu = self.table.a[row] * t                # the unfolded x (kernel units)
         d1, d2, Xr, w, wi = _disk(t, X, Z, a, consistent=True)
         # u = w - c and 1 - c w from the factors, accurate relative to themselves: next to an edge both are
         # small (c near +-1), and w - c would carry the rounding of w and c, amplified by 1/|u + X| in L_1
@@ -286,8 +284,9 @@ class PeriodicPotential:
         G, _ = self._closed(row, t, X, Z)
         return Psi, G
 
-    def _series_primitive(self, row, t, X, Z, xu):
+    def _series_primitive(self, row, t, X, Z):
         """The series of the primitive at depth (W46), Horner in w, one row."""
+        xu = self.table.a[row] * t
         w = np.exp(-Z) * (np.cos(X) + 1j * np.sin(X))
         acc = np.zeros(X.shape, complex)
         for m in range(int(self.M[row]) - 1, 0, -1):
