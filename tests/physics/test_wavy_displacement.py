@@ -159,12 +159,6 @@ def test_hertz_limit():
     np.testing.assert_allclose(uz, rz, rtol=0, atol=1e-9 * scale)
 
 
-def test_periodic_is_refused():
-    with pytest.raises(ValueError, match="single indenter"):
-        contact.subsurface_displacement(0.0, 1.0, 0.3, *F2, periodic=True)
-
-
-
 def flamant_tangential(x, z, a, c, Da, Dc, mu, nu):
     """u_x/Delta_1, u_z/Delta_1 by quadrature of the tangential line-load displacements (plane strain, kernel
     units, log datum ln rho) over the traction q = mu [p(s; a) - p(s; c)]: per unit load along +x

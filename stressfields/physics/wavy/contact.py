@@ -718,24 +718,31 @@ def subsurface_peaks(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
 def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                             n_harmonics=None, nu=0.3, mu=0.0, fx=0.0, rtol=DEFAULT_RTOL,
                             max_terms=DEFAULT_MAX_TERMS):
-    """u_x/Delta_1 and u_z/Delta_1 at (x/a, z/a), z >= 0 (u_z positive into the body, u_x along +x), single
-    indenter, docs/theory/wavy.md (W45); returns (u_x, u_z, info).
+    """u_x/Delta_1 and u_z/Delta_1 at (x/a, z/a), z >= 0 (u_z positive into the body, u_x along +x),
+    docs/theory/wavy.md (W45)-(W48); returns (u_x, u_z, info).
 
     Normal load, and under a tangential load fx = Q/(mu P) with friction coefficient mu the displacements of
     the shear traction q = mu [p(x; a) - p(x; c)] of ``subsurface`` added (uncoupled).  Datum: that of the
     surface ``displacement`` (the log kernel ln|x - xi| in the lambda_1 = 2 pi unit), which u_z of the normal
     load reproduces at z = 0 and u_x of the shear traction likewise; the other component is odd about the
     load's centre: at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) [int_x^inf - int_-inf^x] of the traction (mu_s the
-    shear modulus).  info: "error_estimate" a bound per point (Delta_1 units), "converged" as the stresses'.
-    The periodic surface is not produced: no closed primitive of its potential is implemented (see (W45))."""
-    if periodic:
-        raise ValueError("the displacements below the surface are produced for the single indenter "
-                         "(periodic = False) only")
-    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, False, n_harmonics, rtol, max_terms)
+    shear modulus); single indenter by the closed primitive in omega (W45).  Periodic surface (W46)-(W48): the
+    same relations with the periodic primitive, whose datum is that of the periodic uz (kernel
+    ln|2 sin((x - xi)/2)|: u_z at z = 0 is uz, of zero mean over a period); the mean pressure's k = 0 mode adds
+    the uniform strain of sigma_xx = sigma_zz = -p_inf, so u_x carries -(1 - 2 nu) p_inf x/(2 mu_s) and is not
+    periodic.  info: "error_estimate" a bound per point (Delta_1 units),
+    "converged" as the stresses'."""
+    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     shape, (t, zt, nu, mu, fx, row, a, N) = _points(c, x_over_a, z_over_a, nu, mu, fx)
     zk = a * zt
 
     def primitive(ctx, rows, tt, zz, aa):
+        if ctx.periodic:
+            if ctx.interior is None:
+                ctx.interior = _interior.PeriodicPotential(ctx.table, ctx.dr, ctx.n, ctx.rtol)
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                Psi, G, e = ctx.interior.primitive(rows, tt, zz)
+            return G, Psi, e, ctx.interior.converged[rows].copy()
         with np.errstate(invalid="ignore", divide="ignore"):
             G, _, eG, _ = _interior.nonperiodic_potential(ctx.table, rows, tt, zz)
         Psi, ePsi = _interior.nonperiodic_primitive(ctx.table, rows, tt, zz, aa)
@@ -744,13 +751,13 @@ def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, 
 
     G, Psi, err, conv = primitive(c, row, t, zt, a)
     ux, uz = _interior.normal_displacements(Psi, G, zk, nu)
-    shearing, ratio, admissible, sliding = _stick(a, N, mu, fx, amplitudes, wavenumbers, False)
+    shearing, ratio, admissible, sliding = _stick(a, N, mu, fx, amplitudes, wavenumbers, periodic)
     if shearing.any():
         # the shear traction's potential and primitive: mu times those of p(x; a) less p(x; c) (W43)
         H, Phi = mu * G, mu * Psi
         err = err + np.where(shearing, mu * err, 0.0)
         if sliding.any():
-            cc = _interior_ctx(a[sliding] / np.pi * ratio[sliding], amplitudes, wavenumbers, False, N[sliding],
+            cc = _interior_ctx(a[sliding] / np.pi * ratio[sliding], amplitudes, wavenumbers, periodic, N[sliding],
                                rtol, max_terms)
             k = 1.0 / ratio[sliding]
             Gc, Pc, ec, okc = primitive(cc, cc.row, t[sliding] * k, zt[sliding] * k, cc.a_in)

@@ -25,7 +25,7 @@ PER_CASE: tuple[str, ...] = ("mean_pressure", "peak_pressure", "max_pressure", "
 INTERIOR: tuple[str, ...] = contact.SUBSURFACE
 LOADED: tuple[str, ...] = ("stick_half_width", "tau_max_peak", "tau_max_peak_x", "tau_max_peak_depth",
                            "von_mises_peak", "von_mises_peak_x", "von_mises_peak_depth", "peak_validity")
-#: the displacements below the surface (single indenter only: no closed primitive of the periodic potential)
+#: the displacements below the surface (W45)-(W48)
 DISPLACEMENTS: tuple[str, ...] = ("u_x", "u_z")
 FIELDS: tuple[str, ...] = POINTWISE + PER_CASE + INTERIOR + LOADED + DISPLACEMENTS
 _PEAK = ("validity", "peak_pressure", "n_terms", "error_estimate", "converged")
@@ -71,7 +71,7 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
       ``contact.subsurface_peaks`` (W44); peak_validity search_not_converged where a search ended on its
       box's border, stick_zone_not_admissible (peaks NaN) where (W43) is not the solution;
     * u_x, u_z -- the displacements /Delta_1 at depth z_over_a under the same loads (datum of uz),
-      ``contact.subsurface_displacement``, (W45); single indenter only (ValueError for periodic=True).
+      ``contact.subsurface_displacement``, (W45)-(W48); periodic: with the mean pressure's uniform strain.
 
     Per-contact quantities have the shape of broadcast(two_a_over_lambda1, n_harmonics), pointwise
     ones that broadcast with x_over_a.  Pure NumPy/SciPy, no state.
@@ -84,9 +84,6 @@ def fields(names: Iterable[str], x_over_a: ArrayLike, two_a_over_lambda1: ArrayL
     if approx is not None and (wanted_interior := set(names) & set(INTERIOR + LOADED + DISPLACEMENTS)):
         raise ValueError(f"method {method!r} replaces the pressure only; the field below the surface "
                          f"({', '.join(sorted(wanted_interior))}) needs an exact method")
-    if periodic and (wanted_disp := set(names) & set(DISPLACEMENTS)):
-        raise ValueError(f"{', '.join(sorted(wanted_disp))} below the surface are produced for the single indenter "
-                         "(periodic=False) only")
     if approx is not None and periodic:
         raise ValueError(f"method {method!r} is the paper's approximation for a non-periodic indenter; "
                          "it needs periodic=False")
