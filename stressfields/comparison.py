@@ -327,7 +327,9 @@ def _evaluate_now(recipe, dims, names, fixed, options, chunking) -> list[np.ndar
         result = evaluate(recipe, names, dict(fixed), options["sweep"])
         return [np.asarray(np.broadcast_to(np.asarray(result[n], dtype=dt), ())) for n, dt in zip(names, dtypes)]
     if dims != (POINT,):
-        raise CompareError(f"the reference varies along {', '.join(dims)}: a comparison sweeps only the nodes")
+        raise CompareError(f"scenario '{scen.name}' gives {', '.join(names)} along "
+                           f"{', '.join(d for d in dims if d != POINT)} as well as the nodes; compare takes fields "
+                           "that vary with the nodes alone")
     deps = [scen.variable(n).dims for n in names]
     # the columns of the nodes this group depends on, as `build._inputs` chooses them
     columns = [c for c in recipe.points if any(d is None or c in d for d in deps)]
