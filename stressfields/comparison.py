@@ -347,9 +347,16 @@ def _evaluate_now(recipe, dims, names, fixed, options, chunking) -> list[np.ndar
     starts = range(0, size, step)
     if len(starts) == 1:
         block(0)
-    else:
-        with ThreadPoolExecutor(min(len(starts), os.cpu_count() or 1)) as pool:
-            list(pool.map(block, starts))       # a kernel's exception is raised here
+        return out
+    pool = ThreadPoolExecutor(min(len(starts), os.cpu_count() or 1))
+    try:
+        list(pool.map(block, starts))           # a kernel's exception is raised here
+    except BaseException as exc:
+        # the chunks not started are dropped; after an interrupt (Ctrl-C, a signal) the running ones
+        # are not waited for either
+        pool.shutdown(wait=isinstance(exc, Exception), cancel_futures=True)
+        raise
+    pool.shutdown()
     return out
 
 
