@@ -194,9 +194,10 @@ class Variable:
     not normalised): ``scales.apply_scales`` multiplies the physics' values by its factor, and its
     text becomes the ``normalisation`` attribute and is said in ``description`` and, by its symbol,
     in the label. ``group`` names the variable's route group (the key of the scenario's ``route``
-    table: which computation, closed form, quadrature or series, produced it and to what accuracy). ``long_name`` is the full sentence (the files'
-    ``description``); ``label`` the short name of the files' ``long_name`` (`label_in`; without one
-    ``long_name`` serves, so a ``long_name`` longer than LABEL_CHARS needs a label).
+    table: which computation, closed form, quadrature or series, produced it and to what accuracy).
+    ``long_name`` is the full sentence (the files' ``description``); ``label`` the short name of the
+    files' ``long_name`` (`label_in`; without one ``long_name`` serves, so a ``long_name`` longer than
+    LABEL_CHARS needs a label).
     """
 
     name: str

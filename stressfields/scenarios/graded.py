@@ -240,9 +240,9 @@ def _fields(entry, known, names, p, options, **values):
     return entry(wanted, _indenter(p), **values, method=options["method"], rtol=options["rtol"])
 
 
-def _check_profile(values, method):
+def _check_profile(values):
     """Cross-parameter rules shared by the three scenarios; messages name key, value and range (a method
-    without a route, ``closed`` on a tabulated profile, is the route table's to refuse)."""
+    without a route, e.g. ``closed`` on a tabulated profile, is the route table's to refuse)."""
     problems = []
     kind = values.get("profile")
     if kind == "tabulated":
@@ -264,10 +264,6 @@ def _check_profile(values, method):
         if a_max > r[-1]:
             problems.append(f"contact_radius = {a_max!r} m exceeds the tabulated range: it must be in "
                             f"(0, {float(r[-1])!r}] (the last profile_r); extend the table")
-    if kind == "power_law" and method == "quadrature" and np.min(values["n"]) < 1.0:
-        # the transform quadrature (eq. 5) does not converge for a tip with unbounded slope f' ~ r^(n-1)
-        problems.append(f"n = {float(np.min(values['n']))!r} with method.method = 'quadrature': the quadrature "
-                        "route needs n in [1, 50] (a tip of finite slope); use method 'auto' for n < 1")
     return problems
 
 
@@ -349,7 +345,7 @@ def _evaluate_normal(names, p, options):
 
 
 def _check_normal(values, physical, options):
-    return _check_profile(values, options["method"]) + _depth_problems(values)
+    return _check_profile(values) + _depth_problems(values)
 
 
 def route(values, method, rtol, groups):
@@ -358,7 +354,8 @@ def route(values, method, rtol, groups):
     from ..physics import graded as gp
 
     k = values.get("k", K.default) if values.get("z") is not None else None
-    return {g: gp.resolve(values.get("profile", PROFILE.default), method, rtol, group=g, k=k) for g in groups}
+    return {g: gp.resolve(values.get("profile", PROFILE.default), method, rtol, group=g, k=k, n=values.get("n"))
+            for g in groups}
 
 
 CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
@@ -561,7 +558,7 @@ def _tangential_stress(names, p, options, values) -> dict:
 
 
 def _check_tangential(values, physical, options):
-    problems = _check_profile(values, options["method"])
+    problems = _check_profile(values)
     if (values.get("z") is not None or values.get("x") is not None) and np.any(np.asarray(values.get("k")) > 0.0):
         problems.append(f"z or x is given with k = {float(np.max(values['k']))!r}: below the surface under tangential "
                         "load the graded family solves k = 0")

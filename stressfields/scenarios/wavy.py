@@ -42,7 +42,8 @@ REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy s
 
 def pstar(q: Mapping[str, Any]):
     """p* = pi E* Delta_1/lambda_1 of a recipe's values (physical mode), the family's pressure scale."""
-    return effective_modulus(q["E"], q["nu"], times=math.pi) * np.asarray(q["amplitudes"], dtype=float)[0] / q["lambda_1"]
+    delta_1 = np.asarray(q["amplitudes"], dtype=float)[0]
+    return effective_modulus(q["E"], q["nu"], times=math.pi) * delta_1 / q["lambda_1"]
 
 
 def half_width(q: Mapping[str, Any]):
@@ -357,7 +358,7 @@ def check(values: Mapping[str, Any], physical: bool, options: Mapping[str, Any])
     elif N is not None and np.max(N) > len(wns):
         problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
-    problems += _check_loads(values, physical, method)
+    problems += _check_loads(values, physical)
     moved = [v for v in ("u_x", "u_z") if v in getattr(values, "variables", ())]
     if moved and (isinstance(domain := values.get("domain"), np.ndarray) or domain != "nonperiodic"):
         problems.append(f"output.variables: {', '.join(moved)} below the surface are produced for the single "
@@ -365,30 +366,22 @@ def check(values: Mapping[str, Any], physical: bool, options: Mapping[str, Any])
     elif moved and method in WAVY_APPROXIMATE_METHODS:
         problems.append(f"method.method = {method!r} is an approximate pressure; {', '.join(moved)} need an exact "
                         f"method ({', '.join(WAVY_SERIES_METHODS)})")
-    domain = values.get("domain")
-    if method in WAVY_APPROXIMATE_METHODS and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
-        problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "
-                        f"it needs domain = 'nonperiodic', got domain = {_show(domain)}")
     return problems
 
 
-def _check_loads(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
-    """nu in physical mode; the depth and the tangential load: exact methods only; the tangential load with mu,
-    at most mu P."""
+def _check_loads(values: Mapping[str, Any], physical: bool) -> list[str]:
+    """nu in physical mode; the tangential load with mu, at most mu P (that it needs an exact method is the
+    route table's to say, ``physics.wavy.resolve``)."""
     problems = []
     if physical and values.get("nu") is None:
         problems.append("missing parameter 'nu' (Poisson's ratio of the half-plane; a number in [0, 0.5]): "
                         "required in physical mode")
-    load = next((k for k in ("fx", "tangential_force") if values.get(k) is not None
-                 and np.any(np.asarray(values[k], dtype=float) > 0.0)), None)
+    load = _load(values)
     if load is None:
         return problems
     if values.get("mu") is None:
         problems.append(f"{load} is a tangential load of partial slip, which needs the friction coefficient mu; "
                         "give mu (a number in [0, 10])")
-    if method in WAVY_APPROXIMATE_METHODS:
-        problems.append(f"method.method = {method!r} is an approximate pressure; a tangential load ({load}) needs an "
-                        f"exact method ({', '.join(WAVY_SERIES_METHODS)})")
     if load == "tangential_force" and values.get("mu") is not None and not problems and physical:
         problems += _check_tangential_force(values)
     return problems
@@ -434,7 +427,15 @@ def _route(values: Mapping[str, Any], method: str, rtol: float, groups) -> dict[
     z given the field below the surface is computed."""
     from ..physics.wavy import resolve
 
-    return {g: resolve(method, rtol, below=values.get("z") is not None, group=g) for g in groups}
+    domain = values.get("domain", "periodic")
+    return {g: resolve(method, rtol, below=values.get("z") is not None, group=g, load=_load(values),
+                       domain=domain if isinstance(domain, str) else list(np.ravel(domain))) for g in groups}
+
+
+def _load(values: Mapping[str, Any]) -> str | None:
+    """The recipe's key of a tangential load (fx or tangential_force, > 0 somewhere), or None."""
+    return next((k for k in ("fx", "tangential_force") if values.get(k) is not None
+                 and np.any(np.asarray(values[k], dtype=float) > 0.0)), None)
 
 
 def _show(v):

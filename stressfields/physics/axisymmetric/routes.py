@@ -57,7 +57,8 @@ import numpy as np
 
 from ..names import AXISYMMETRIC_METHODS
 
-__all__ = ["GROUPS", "has_displacement_closed_form", "METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
+__all__ = ["GROUPS", "has_displacement_closed_form", "METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED",
+           "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
            "power_law_family", "has_closed_form", "has_interior_closed_form", "resolve", "resolve_interior",
            "INTERIOR_TANGENTIAL_CLOSED_KINDS", "has_interior_tangential_closed_form",
            "TANGENTIAL_TIP_RTOL", "resolve_depth", "tangential_floor"]

@@ -74,13 +74,26 @@ def substitutes(method: str) -> bool:
 GROUPS: tuple[str, ...] = ("surface", "stress")
 
 
-def resolve(method: str, rtol: float, *, below: bool = False, group: str = "stress") -> tuple[str, str]:
+def resolve(method: str, rtol: float, *, below: bool = False, group: str = "stress", domain=None,
+            load: str | None = None) -> tuple[str, str]:
     """(route, accuracy) of a method at tolerance rtol for a group of variables (``GROUPS``), as written
     into their attributes; ``below``: the recipe asks for the field below the surface (exact methods
-    only, (W36)-(W44)), whose ``stress`` group takes the route below the surface.  ValueError for an
-    approximate method below the surface, in words a recipe check quotes after "method."."""
+    only, (W36)-(W44)), whose ``stress`` group takes the route below the surface.
+
+    The approximate methods exist for a non-periodic indenter under normal load only: ValueError for
+    one of them below the surface, with a ``domain`` other than "nonperiodic" (the recipe's domain, a
+    value or the values of a sweep; None: not said), or with a tangential ``load`` (the recipe's key of
+    it, None: none), in words a recipe check quotes after "method."."""
     if group not in GROUPS:
         raise ValueError(f"unknown variable group {group!r}; allowed: {', '.join(GROUPS)}")
+    if approximation(method) is not None:
+        if domain is not None and (not isinstance(domain, str) or domain != "nonperiodic"):
+            shown = domain if isinstance(domain, str) else [str(d) for d in domain]
+            raise ValueError(f"method = {method!r} is the paper's approximation for a non-periodic indenter; it "
+                             f"needs domain = 'nonperiodic', got domain = {shown!r}")
+        if load is not None:
+            raise ValueError(f"method = {method!r} is an approximate pressure; a tangential load ({load}) needs an "
+                             f"exact method ({', '.join(SERIES_METHODS)})")
     if below:
         route, accuracy = resolve(method, rtol)
         if approximation(method) is not None:
