@@ -69,14 +69,17 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None, *, evaluate_grou
                 coords[par.name] = xr.Variable((), value, cf.coord_attrs(par, physical))
     options = {"method": recipe.method, "rtol": recipe.rtol, "physical": physical, "sweep": recipe.values}
 
-    route = scen.route(recipe.values, recipe.method, recipe.rtol) if scen.route else None
-    for dims, names in _groups(recipe).items():
+    groups = _groups(recipe)
+    # each float variable says the route and accuracy of its own group (displacements, peaks and the
+    # contact quantities may take other routes than the stresses): the family's route table decides
+    routes = scen.routes(recipe.values, recipe.method, recipe.rtol, [n for names in groups.values() for n in names])
+    for dims, names in groups.items():
         outputs = (evaluate_group or _evaluate_group)(recipe, dims, names, fixed, options, chunking)
         for name, arr in zip(names, outputs):
             var = scen.variable(name)
             attrs = cf.variable_attrs(var, physical)
-            if route and not var.flag_values and var.dtype.startswith("float"):
-                attrs["stressfields_method"], attrs["stressfields_accuracy"] = route
+            if var.group in routes and not var.flag_values and var.dtype.startswith("float"):
+                attrs["stressfields_method"], attrs["stressfields_accuracy"] = routes[var.group]
             (coords if var.coordinate else data_vars)[name] = xr.Variable(dims, arr, attrs)
 
     ds = xr.Dataset(data_vars, coords=coords, attrs=cf.global_attrs(recipe))

@@ -139,7 +139,7 @@ def variable_attrs(var: Variable, physical: bool) -> dict:
     else:
         attrs["units"] = var.units_in(physical)
     if var.scale and not physical:
-        attrs["normalisation"] = var.scale
+        attrs["normalisation"] = var.scale.text
     if var.comment:
         attrs["comment"] = var.comment
     return attrs

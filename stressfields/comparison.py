@@ -18,16 +18,16 @@ recipe's mode, except in a format that carries no units (VTU, Exodus II), whose 
 This module holds what the comparison needs of the recipe: the reference is the recipe with the
 coordinate columns as its ``[points]`` table (the recipe's own values of those parameters and its
 ``[points]`` are replaced), so it is evaluated at the nodes and nowhere else, within the accuracy
-its fields state (``stressfields_accuracy``); the scale S of each variable (its normalisation scale:
-1 in normalised mode, where values are already divided by it; in physical mode the mean contact
-pressure p_m for stresses, p_m/a for dpdz, p* and Delta_1 for the wavy fields, read from the
-reference; else the largest |reference| over the nodes); and the report folder, checked before
+its fields state (``stressfields_accuracy``); the scale S of each variable (its declared ``Scale``:
+1 in normalised mode, where values are already divided by it; in physical mode the scale's value,
+``Scale.value``, from the reference's variables and the recipe's values, e.g. the mean contact
+pressure p_m for stresses, p_m/a for dpdz, p* and Delta_1 for the wavy fields; where the scale
+declares none, the largest |reference| over the nodes); and the report folder, checked before
 anything is computed and published whole. The statistics are `fe.stats`'.
 """
 from __future__ import annotations
 
 import json
-import math
 import os
 import re
 import shutil
@@ -209,27 +209,18 @@ def _dataset_columns(ds: xr.Dataset, source: str) -> list[Column]:
 
 # --- the reference ---------------------------------------------------------------------------------
 
-#: normalisation scale (the start of a Variable.scale text) -> how its value is had in physical mode:
-#: variables of the reference to divide, or a function of the recipe values
-_SCALES = (
-    ("the mean contact pressure p_m", ("mean_pressure",), "mean_pressure"),
-    ("p_m/a", ("mean_pressure", "contact_radius"), "mean_pressure / contact_radius"),
-    ("the contact radius a", ("contact_radius",), "contact_radius"),
-    ("p* =", (), "p* = pi E/(1-nu^2) Delta_1/lambda_1"),
-    ("the amplitude Delta_1", (), "Delta_1"),
-    ("the contact half-width a", (), "a lambda_1/2"),
-)
 FALLBACK_SCALE = "max |reference| over the compared points"
 
 
 def _scale_spec(var, physical: bool) -> tuple[str, tuple[str, ...]]:
-    """(definition, variables of the reference it needs); in normalised mode a normalised variable's
-    values are already divided by its scale, so S = 1."""
-    if var.scale and not physical:
-        return "1 (values divided by " + var.scale + ")", ()
-    for start, needs, text in _SCALES:
-        if var.scale and var.scale.startswith(start):
-            return text, needs
+    """(definition, variables of the reference it needs) of S, from the variable's declared Scale: in
+    normalised mode a normalised variable's values are already divided by its scale, so S = 1; in
+    physical mode the scale's value (``Scale.value``), or the largest |reference| where it declares none."""
+    scale = var.scale
+    if scale is not None and not physical:
+        return "1 (values divided by " + scale.text + ")", ()
+    if scale is not None and scale.value is not None:
+        return scale.definition, scale.needs
     return FALLBACK_SCALE, ()
 
 
@@ -360,23 +351,23 @@ def _evaluate_now(recipe, dims, names, fixed, options, chunking) -> list[np.ndar
     return out
 
 
-def _scale_value(definition: str, needs, ref: xr.Dataset, reference: np.ndarray) -> np.ndarray:
-    """S at every point: 1, the reference's own scale variables, the recipe's values, or max |reference|."""
+def _scale_value(var, physical: bool, ref: xr.Dataset, reference: np.ndarray) -> np.ndarray:
+    """S at every point (``_scale_spec``): 1, the Scale's value from the reference's variables and the
+    recipe's values, or max |reference| (also where a value it reads is a column of the nodes)."""
+    definition, needs = _scale_spec(var, physical)
     if definition.startswith("1 "):
         return np.ones_like(reference)
-    if definition == FALLBACK_SCALE or (needs and not all(n in ref for n in needs)):
-        finite = reference[np.isfinite(reference)]
-        return np.full_like(reference, np.max(np.abs(finite)) if finite.size else np.nan)
-    if needs:
-        s = ref[needs[0]] / ref[needs[1]] if len(needs) == 2 else ref[needs[0]]
-        return np.broadcast_to(np.asarray(s.values, dtype=float), reference.shape).copy()
-    p = json.loads(ref.attrs["stressfields_recipe_canonical"])["parameters"]
-    if not {"amplitudes", "a", "lambda_1", "E", "nu"} <= set(p):     # one of them is a column of nodes
-        return _scale_value(FALLBACK_SCALE, (), ref, reference)
-    amps = p["amplitudes"]
-    s = {"Delta_1": amps[0], "a lambda_1/2": p["a"] * p["lambda_1"] / 2.0,
-         "p* = pi E/(1-nu^2) Delta_1/lambda_1": math.pi * p["E"] / (1.0 - p["nu"] ** 2) * amps[0] / p["lambda_1"]}
-    return np.full_like(reference, s[definition])
+    if definition != FALLBACK_SCALE and all(n in ref for n in needs):
+        quantities = {**json.loads(ref.attrs["stressfields_recipe_canonical"])["parameters"],
+                      **{n: ref[n] for n in needs}}
+        try:
+            value = var.scale.value(quantities)
+        except KeyError:            # a value it reads is a column of the nodes
+            value = None
+        if value is not None:
+            return np.broadcast_to(np.asarray(value, dtype=float), reference.shape).copy()
+    finite = reference[np.isfinite(reference)]
+    return np.full_like(reference, np.max(np.abs(finite)) if finite.size else np.nan)
 
 
 def summary(ds: xr.Dataset) -> dict[str, dict]:

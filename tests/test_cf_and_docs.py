@@ -12,7 +12,8 @@ import xarray as xr
 import stressfields as sf
 from stressfields import cli
 from stressfields.scenarios import REGISTRY
-from stressfields.scenarios.base import LABEL_CHARS, PLOT_LABEL_CHARS, SCALE_SYMBOLS
+from stressfields.scenarios.base import LABEL_CHARS, PLOT_LABEL_CHARS
+from stressfields.scenarios.scales import Scale
 from stressfields.schema import document
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -113,9 +114,10 @@ def test_every_declaration_has_a_short_label():
                         problems.append(f"{scen.name}: {kind}({item.name!r}) needs a shorter label= (at most "
                                         f"{LABEL_CHARS} characters, and {PLOT_LABEL_CHARS} with its units, the width "
                                         f"at which xarray wraps plot labels): {shown!r}")
-                    if getattr(item, "scale", None) and item.scale not in SCALE_SYMBOLS:
-                        problems.append(f"{scen.name}: scale {item.scale!r} of {item.name!r} needs a symbol in "
-                                        "scenarios.base.SCALE_SYMBOLS")
+                    scale = getattr(item, "scale", None)
+                    if scale is not None and not (isinstance(scale, Scale) and scale.symbol and scale.text):
+                        problems.append(f"{scen.name}: scale {scale!r} of {item.name!r} must be a Scale with a "
+                                        "symbol and a text (scenarios.scales)")
     assert problems == [], "\n".join(problems)
 
 

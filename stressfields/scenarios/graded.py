@@ -17,6 +17,8 @@ scenario), and the route table is ``physics.graded.resolve``.  The functions tha
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
 from ..physics.flags import Validity as V
@@ -239,8 +241,9 @@ def _fields(entry, known, names, p, options, **values):
     return entry(wanted, _indenter(p), **values, method=options["method"], rtol=options["rtol"])
 
 
-def _check_profile(values, method):
-    """Cross-parameter rules shared by the three scenarios; messages name key, value and range."""
+def _check_profile(values):
+    """Cross-parameter rules shared by the three scenarios; messages name key, value and range (a method
+    without a route, e.g. ``closed`` on a tabulated profile, is the route table's to refuse)."""
     problems = []
     kind = values.get("profile")
     if kind == "tabulated":
@@ -262,13 +265,6 @@ def _check_profile(values, method):
         if a_max > r[-1]:
             problems.append(f"contact_radius = {a_max!r} m exceeds the tabulated range: it must be in "
                             f"(0, {float(r[-1])!r}] (the last profile_r); extend the table")
-        if method == "closed":
-            problems.append("method.method = 'closed' has no closed form for profile = 'tabulated'; "
-                            "use 'auto' or 'quadrature'")
-    if kind == "power_law" and method == "quadrature" and np.min(values["n"]) < 1.0:
-        # the transform quadrature (eq. 5) does not converge for a tip with unbounded slope f' ~ r^(n-1)
-        problems.append(f"n = {float(np.min(values['n']))!r} with method.method = 'quadrature': the quadrature "
-                        "route needs n in [1, 50] (a tip of finite slope); use method 'auto' for n < 1")
     return problems
 
 
@@ -329,6 +325,17 @@ N_VARS = (
 ) + stress_variables(N_DIMS + ("z", "rho"), adhesive=False) + peak_variables(N_DIMS)
 
 
+def _grouped(declared) -> tuple[Variable, ...]:
+    """The declarations, the stress below the surface and its peaks in the route table's "stress" group
+    (``physics.graded.resolve``), the rest in its "surface" group."""
+    return tuple(dataclasses.replace(v, group="stress") if not v.flag_values and (
+        v.name.startswith("sigma_") or v.name in ("von_mises", "tau_max") or "_peak" in v.name) else v
+        for v in declared)
+
+
+N_VARS = _grouped(N_VARS)
+
+
 def _evaluate_normal(names, p, options):
     from ..physics import graded as gp
 
@@ -341,19 +348,18 @@ def _evaluate_normal(names, p, options):
     return out
 
 
-def _check_normal(values, physical, method):
-    return _check_profile(values, method) + _depth_problems(values)
+def _check_normal(values, physical, options):
+    return _check_profile(values) + _depth_problems(values)
 
 
-def route(values, method, rtol):
-    """Closed forms of the paper for power-law profiles; the MDR quadrature for tabulated ones."""
+def route(values, method, rtol, groups):
+    """``physics.graded.resolve`` for each group: closed forms of the paper for power-law profiles, the
+    MDR quadrature for tabulated ones; the stress group below the surface where the recipe gives z."""
     from ..physics import graded as gp
 
-    surface = gp.resolve(values.get("profile", PROFILE.default), method, rtol)
-    if values.get("z") is None:
-        return surface
-    below = gp.routes.resolve_interior(values.get("k", K.default), rtol)
-    return f"{surface[0]}; below the surface: {below[0]}", f"{surface[1]}; below the surface: {below[1]}"
+    k = values.get("k", K.default) if values.get("z") is not None else None
+    return {g: gp.resolve(values.get("profile", PROFILE.default), method, rtol, group=g, k=k, n=values.get("n"))
+            for g in groups}
 
 
 CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
@@ -425,7 +431,7 @@ GRADED_ADHESIVE = Scenario(
     summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
             "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
     references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL_N + (DGAM, CONTROL, A_RAD, Z, R_REL),
-    variables=AD_VARS,
+    variables=_grouped(AD_VARS),
     evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     renamed=RENAMED,
     default_variables=("depth", "normal_force", "pressure", "critical_radius", "critical_depth", "critical_force"),
@@ -555,8 +561,8 @@ def _tangential_stress(names, p, options, values) -> dict:
     return got
 
 
-def _check_tangential(values, physical, method):
-    problems = _check_profile(values, method)
+def _check_tangential(values, physical, options):
+    problems = _check_profile(values)
     if (values.get("z") is not None or values.get("x") is not None) and np.any(np.asarray(values.get("k")) > 0.0):
         problems.append(f"z or x is given with k = {float(np.max(values['k']))!r}: below the surface under tangential "
                         "load the graded family solves k = 0")
@@ -595,7 +601,7 @@ GRADED_TANGENTIAL = Scenario(
     references=REFERENCE, theory="graded",
     parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL,
                            Z_T, X_T),
-    variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
+    variables=_grouped(T_VARS), evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
     conventions=CONVENTIONS, route=route, renamed=RENAMED,
     default_variables=("stick_radius", "tangential_displacement", "max_tangential_displacement", "normal_force",
                        "shear_traction"),

@@ -24,6 +24,7 @@ recipe onto one `physics.wavy.fields` call per domain and applies the physical s
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any, Mapping, Sequence
 
@@ -33,21 +34,43 @@ from ..physics.flags import Validity as V
 from ..physics.flags import declare
 from ..physics.names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
 from .base import ARRAY, INT, STR, Options, Parameter, Scenario, Variable
+from .scales import Case, Scale, apply_scales, effective_modulus
 
 REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy surface with an elastic "
              "half-plane, Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467 (pressures with "
              "the plane-strain modulus E* = E/(1-nu^2); see the errata of the theory page)")
 
-PSTAR = "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)"
+
+def pstar(q: Mapping[str, Any]):
+    """p* = pi E* Delta_1/lambda_1 of a recipe's values (physical mode), the family's pressure scale."""
+    delta_1 = np.asarray(q["amplitudes"], dtype=float)[0]
+    return effective_modulus(q["E"], q["nu"], times=math.pi) * delta_1 / q["lambda_1"]
+
+
+def half_width(q: Mapping[str, Any]):
+    """The contact half-width a = (2a/lambda_1) lambda_1/2 in metres (physical mode)."""
+    return np.asarray(q["a"], dtype=float) * q["lambda_1"] / 2.0
+
+
+# -- the family's scales: the physics returns pressures and stresses per p*, lengths per a, u_z per
+# Delta_1 (normalised mode); the block's Case (``_case``) holds p*, Delta_1 and the half-width a in
+# SI units (physical mode)
+PSTAR = Scale("p*", "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)",
+              lambda c, physical: c["p*"] if physical else 1.0,
+              value=pstar, definition="p* = pi E/(1-nu^2) Delta_1/lambda_1")
+DELTA_1 = Scale("Delta_1", "the amplitude Delta_1 of the base wave",
+                lambda c, physical: c["Delta_1"] if physical else 1.0,
+                value=lambda q: np.asarray(q["amplitudes"], dtype=float)[0], definition="Delta_1")
+HALF_WIDTH = Scale("a", "the contact half-width a", lambda c, physical: c["half_width"] if physical else 1.0,
+                   value=half_width, definition="a lambda_1/2")
+PER_HALF_WIDTH = Scale("(p*/a)", "p*/a, with a the contact half-width",
+                       lambda c, physical: c["p*"] / c["half_width"] if physical else 1.0)
 #: the largest wavenumber n_i a recipe may give: the periodic closed form sums n_max terms at each of
 #: ~50 n_max quadrature nodes of the continuous-contact test, and the single-indenter series is
 #: ~a n_max/2 terms long, so a periodic contact costs ~n_max^2 (measured: 300: 0.9 s, 500: 2.0 s,
 #: 1000: 6.2 s, 3000: 80 s; 1e12 would never end)
 MAX_WAVENUMBER = 500
 DOMAINS = ("periodic", "nonperiodic")
-DELTA_1 = "the amplitude Delta_1 of the base wave"
-HALF_WIDTH = "the contact half-width a"
-PER_HALF_WIDTH = "p*/a, with a the contact half-width"
 #: what a per-contact (x-independent) quantity depends on; only the swept ones become dimensions
 CASE = ("domain", "amplitudes", "wavenumbers", "n_harmonics", "E", "nu", "lambda_1", "a")
 
@@ -247,8 +270,12 @@ VARIABLES = (
 #: the recipe gives z, the shear traction and stick width with a tangential load: ``recorded_when``)
 DEFAULTS = tuple(v.name for v in VARIABLES[:VARIABLES.index(next(v for v in VARIABLES if v.name == "sigma_xx"))]
                  if not v.always)
-#: variable -> the scale its normalised value is multiplied by in physical mode (its declaration's)
-_SCALE = {v.name: v.scale for v in VARIABLES if v.scale}
+#: the field below the surface (stresses, dpdz, displacements, their peaks) takes the route table's
+#: "stress" group; the surface quantities its "surface" group
+VARIABLES = tuple(dataclasses.replace(v, group="stress") if not v.flag_values and (
+    v.name.startswith(("sigma_", "u_")) or v.name in ("von_mises", "tau_max", "dpdz") or "_peak" in v.name) else v
+    for v in VARIABLES)
+DECLARED = {v.name: v for v in VARIABLES}
 
 
 def evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options) -> dict[str, np.ndarray]:
@@ -268,28 +295,32 @@ def _evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options, peri
 
     amps, wns = np.asarray(p["amplitudes"], dtype=float), np.asarray(p["wavenumbers"], dtype=float)
     a = np.asarray(p["a"], dtype=float)
-    if options["physical"]:
-        pstar = math.pi * p["E"] / (1.0 - p["nu"] ** 2) * amps[0] / p["lambda_1"]
-        length, half_width = amps[0], a * p["lambda_1"] / 2.0
-    else:
-        pstar, length, half_width = 1.0, 1.0, 1.0
-    x = np.asarray(p.get("x", 0.0), dtype=float) / half_width
-    z = np.asarray(p.get("z", 0.0), dtype=float) / half_width
+    case = _case(p, options["physical"])
+    x = np.asarray(p.get("x", 0.0), dtype=float) / case["half_width"]
+    z = np.asarray(p.get("z", 0.0), dtype=float) / case["half_width"]
     mu = np.asarray(p.get("mu", 0.0), dtype=float)
     fx = p.get("fx")
     if fx is None and p.get("tangential_force") is not None:
         # Q per period (per unit length) over mu P, P = p_inf lambda_1 with p_inf in pascals (W10)
-        load = wv.mean_pressure(a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics")) * pstar
+        load = wv.mean_pressure(a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics")) * case["p*"]
         with np.errstate(divide="ignore", invalid="ignore"):
             fx = np.where(mu > 0.0, np.asarray(p["tangential_force"], dtype=float) / (mu * load * p["lambda_1"]), 0.0)
     fx = np.asarray(0.0 if fx is None else fx, dtype=float)
     raw = wv.fields(names, x, a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics"),
                     method=options["method"], rtol=options["rtol"],
-                    contact_points=_contact_points(options, a, half_width), z_over_a=z,
+                    contact_points=_contact_points(options, a, case["half_width"]), z_over_a=z,
                     nu=np.asarray(p.get("nu", 0.3), dtype=float), mu=mu, fx=fx,
                     below=(options.get("sweep") or p).get("z") is not None)
-    factor = {PSTAR: pstar, DELTA_1: length, HALF_WIDTH: half_width, PER_HALF_WIDTH: pstar / half_width}
-    return {n: raw[n] * factor[_SCALE[n]] if n in _SCALE else raw[n] for n in names}
+    return apply_scales({n: raw[n] for n in names}, DECLARED, case, options["physical"])
+
+
+def _case(p: Mapping[str, Any], physical: bool) -> Case:
+    """The quantities the family's scales read: p*, Delta_1 and the half-width a in SI units (physical
+    mode; 1 normalised, where x and z are already in units of a)."""
+    if not physical:
+        return Case(half_width=1.0)
+    return Case(Delta_1=lambda: np.asarray(p["amplitudes"], dtype=float)[0], half_width=half_width(p),
+                **{"p*": lambda: pstar(p)})
 
 
 def _contact_points(options: Options, a: np.ndarray, half_width) -> np.ndarray | None:
@@ -306,8 +337,12 @@ def _contact_points(options: Options, a: np.ndarray, half_width) -> np.ndarray |
     return np.searchsorted(x_all, limit, side="right")
 
 
-def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
-    """Cross-parameter checks: the harmonic table, n_harmonics against it, approximations' domain."""
+def check(values: Mapping[str, Any], physical: bool, options: Mapping[str, Any]) -> list[str]:
+    """Cross-parameter checks: the harmonic table, n_harmonics against it, the displacements' method
+    (``options``: the recipe's [method] table; where the approximate methods have no route, below the
+    surface, on a periodic domain or under a tangential load, is the route table's to refuse,
+    ``physics.wavy.resolve``)."""
+    method = options["method"]
     amps, wns = values.get("amplitudes"), values.get("wavenumbers")
     if amps is None or wns is None:
         return []
@@ -336,38 +371,27 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
     elif N is not None and np.max(N) > len(wns):
         problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
-    problems += _check_loads(values, physical, method)
+    problems += _check_loads(values, physical)
     moved = [v for v in ("u_x", "u_z") if v in getattr(values, "variables", ())]
     if moved and method in WAVY_APPROXIMATE_METHODS:
         problems.append(f"method.method = {method!r} is an approximate pressure; {', '.join(moved)} need an exact "
                         f"method ({', '.join(WAVY_SERIES_METHODS)})")
-    domain = values.get("domain")
-    if method in WAVY_APPROXIMATE_METHODS and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
-        problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "
-                        f"it needs domain = 'nonperiodic', got domain = {_show(domain)}")
     return problems
 
 
-def _check_loads(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
-    """nu in physical mode; the depth and the tangential load: exact methods only; the tangential load with mu,
-    at most mu P."""
+def _check_loads(values: Mapping[str, Any], physical: bool) -> list[str]:
+    """nu in physical mode; the tangential load with mu, at most mu P (that it needs an exact method is the
+    route table's to say, ``physics.wavy.resolve``)."""
     problems = []
-    if values.get("z") is not None and method in WAVY_APPROXIMATE_METHODS:
-        problems.append(f"method.method = {method!r} is an approximate pressure; the field below the surface (z) "
-                        f"needs an exact method ({', '.join(WAVY_SERIES_METHODS)})")
     if physical and values.get("nu") is None:
         problems.append("missing parameter 'nu' (Poisson's ratio of the half-plane; a number in [0, 0.5]): "
                         "required in physical mode")
-    load = next((k for k in ("fx", "tangential_force") if values.get(k) is not None
-                 and np.any(np.asarray(values[k], dtype=float) > 0.0)), None)
+    load = _load(values)
     if load is None:
         return problems
     if values.get("mu") is None:
         problems.append(f"{load} is a tangential load of partial slip, which needs the friction coefficient mu; "
                         "give mu (a number in [0, 10])")
-    if method in WAVY_APPROXIMATE_METHODS:
-        problems.append(f"method.method = {method!r} is an approximate pressure; a tangential load ({load}) needs an "
-                        f"exact method ({', '.join(WAVY_SERIES_METHODS)})")
     if load == "tangential_force" and values.get("mu") is not None and not problems and physical:
         problems += _check_tangential_force(values)
     return problems
@@ -379,8 +403,8 @@ def _check_tangential_force(values: Mapping[str, Any]) -> list[str]:
     from ..physics.wavy import mean_pressure
 
     amps, wns = np.asarray(values["amplitudes"], dtype=float), np.asarray(values["wavenumbers"], dtype=float)
-    E, nu, lam = (float(values[k]) for k in ("E", "nu", "lambda_1"))
-    pstar = math.pi * E / (1.0 - nu ** 2) * amps[0] / lam
+    lam = float(values["lambda_1"])
+    scale = pstar({k: float(values[k]) for k in ("E", "nu", "lambda_1")} | {"amplitudes": amps})
     a = np.asarray(values["a"], dtype=float).reshape(-1, 1, 1, 1)
     N = values.get("n_harmonics")
     N = np.asarray(len(wns) if N is None else N).reshape(1, -1, 1, 1)
@@ -389,7 +413,7 @@ def _check_tangential_force(values: Mapping[str, Any]) -> list[str]:
     domains = values.get("domain", "periodic")
     for domain in np.atleast_1d(np.asarray(domains, dtype=object)):
         try:
-            P = mean_pressure(a, amps, wns, periodic=domain == "periodic", n_harmonics=N) * pstar * lam
+            P = mean_pressure(a, amps, wns, periodic=domain == "periodic", n_harmonics=N) * scale * lam
         except ValueError:
             return []                 # the harmonic table's own problems are reported elsewhere
         over = Q > mu * P * (1.0 + 1e-12)
@@ -408,12 +432,20 @@ def _complete(values: dict) -> None:
         values["nu"] = 0.3
 
 
-def _route(values: Mapping[str, Any], method: str, rtol: float) -> tuple[str, str]:
-    """The route table's (route, accuracy) of the method, whatever the values (``physics.wavy.resolve``)."""
+def _route(values: Mapping[str, Any], method: str, rtol: float, groups) -> dict[str, tuple[str, str]]:
+    """The route table's (route, accuracy) of the method for each group (``physics.wavy.resolve``); with
+    z given the field below the surface is computed."""
     from ..physics.wavy import resolve
 
-    below = values.get("z") is not None and method not in WAVY_APPROXIMATE_METHODS
-    return resolve(method, rtol, below=below)
+    domain = values.get("domain", "periodic")
+    return {g: resolve(method, rtol, below=values.get("z") is not None, group=g, load=_load(values),
+                       domain=domain if isinstance(domain, str) else list(np.ravel(domain))) for g in groups}
+
+
+def _load(values: Mapping[str, Any]) -> str | None:
+    """The recipe's key of a tangential load (fx or tangential_force, > 0 somewhere), or None."""
+    return next((k for k in ("fx", "tangential_force") if values.get(k) is not None
+                 and np.any(np.asarray(values[k], dtype=float) > 0.0)), None)
 
 
 def _show(v):

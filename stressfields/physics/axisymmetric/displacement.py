@@ -32,6 +32,7 @@ from ..quadrature import gauss_jacobi, gauss_legendre, group_by
 from .interior import _live, _Nodes, _superpose, check_arguments, flat_arguments, interior_orders
 from .interior_hertz import _geometry, _one_minus_m_atan, _sliding_scalars, _x_minus_sin
 from .profiles import Profile
+from .routes import has_displacement_closed_form  # noqa: F401 (the route table decides; re-exported)
 
 __all__ = ["NAMES", "displacements", "tangential_displacements", "has_displacement_closed_form",
            "punch_displacement_unit", "sliding_punch_displacement_unit",
@@ -332,12 +333,6 @@ def tangential_displacements(names, profile: Profile, x, y, z, *, a, c, nu, mu_k
     _validate(z, a, c, nu, muk, profile, rtol)
     part = _tangential(x, y, z, a, c, nu, muk, profile, method, rtol)
     return {n: part[n[-1]].reshape(shape) for n in names}
-
-
-def has_displacement_closed_form(profile: Profile) -> bool:
-    """Whether the displacements of ``profile`` have a closed form (flat punch, paraboloid, power
-    law n = 2); every other profile takes the 1-D route."""
-    return profile.kind == "flat_punch" or (profile.closed is not None and profile.closed[0] == "paraboloid")
 
 
 def _validate(z, a, c, nu, muk, profile, rtol):
