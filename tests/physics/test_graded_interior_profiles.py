@@ -135,3 +135,26 @@ def test_the_tip_of_a_sharp_power_law_is_unbounded_only_on_the_surface():
     assert np.isposinf(out["tau_max"][0]) and np.isposinf(out["von_mises"][0])
     assert all(np.isfinite(out[c][1:]).all() for c in INTERIOR)
     assert out["sigma_zz"][1] < out["sigma_zz"][2] < 0.0
+
+
+def test_peaks_of_the_cone_and_of_a_sharp_power_law():
+    """The cone at k = 0.5: the search's peak is the largest tau_max of a 21 x 21 map and the maximum of a bounded
+    1-D search on the axis, where it sits; f = A r^0.4 (n + k < 1): +inf at the surface centre, flag 1."""
+    from scipy.optimize import minimize_scalar
+
+    from stressfields.physics.graded.interior import peaks
+
+    kw = dict(a=A0, k=0.5, nu=0.4, E0=E0, c0=C0, rtol=1e-8)        # the same field for both searches
+    got = peaks(CONE, **kw)
+
+    def tau(rho, z):
+        return interior_fields(["tau_max"], CONE, rho=rho, z=z, **kw)["tau_max"]
+    grid = tau(np.linspace(0.0, 2.0, 21)[None, :], np.linspace(0.0, 2.0, 21)[:, None])
+    axis = minimize_scalar(lambda z: -float(tau(0.0, z)), bounds=(0.05, 1.0), method="bounded",
+                           options={"xatol": 1e-9})
+    assert float(got["tau_max_peak"]) >= np.max(grid)
+    assert float(got["tau_max_peak"]) == pytest.approx(-axis.fun, rel=1e-9)
+    assert float(got["tau_max_peak_depth"]) == pytest.approx(axis.x, abs=1e-5)
+    assert float(got["tau_max_peak_rho"]) == 0.0 and int(got["peak_validity"]) == 0
+    sharp = peaks(gp.Indenter.power_law(A=2.0, n=0.4), **kw)
+    assert np.isposinf(sharp["tau_max_peak"]) and int(sharp["peak_validity"]) == 1

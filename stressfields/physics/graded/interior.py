@@ -1,5 +1,5 @@
 """Below the surface of the power-law graded half-space: the stress tensor under the normal and the
-adhesive (JKR-type) MDR contact, docs/theory/graded.md section 10 ((G56)-(G68)).
+adhesive (JKR-type) MDR contact, docs/theory/graded.md section 10 ((G57)-(G70)).
 
 Two cases are solved, every other (k, nu) is refused (``check_supported``):
 
@@ -90,8 +90,9 @@ def interior_fields(names: Sequence[str], profile: Indenter, *, a, rho, z, k, nu
     Normal contact (``delta_gamma`` None) or adhesive (JKR-type, work of adhesion ``delta_gamma``) of a
     rigid indenter at contact radius ``a``; ``rho``, ``z`` in units of a; E0, c0, k, nu as the surface
     entry points.  Every argument broadcasts (the geometry arrays of ``profile`` too).  Routes and
-    accuracy: docs/theory/graded.md (G67); singular points (conical tip at k = 0, adhesive edge r = a)
-    only at z = 0, with +-inf or NaN as the surface fields (G68).
+    accuracy: docs/theory/graded.md (G67), (G70); singular points (conical tip at k = 0, the centre of a
+    power law with n + k <= 1 at k > 0, adhesive edge r = a) only at z = 0, with +-inf or NaN as the
+    surface fields (G68).
     """
     names = _known(names, INTERIOR)
     if not names:
