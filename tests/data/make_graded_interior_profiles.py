@@ -13,7 +13,7 @@ by mpmath.hyp2f1 at 40 digits.  Error estimate: mp.quad's own (error=True) of th
 point.
 
 Run from the repository root:  python tests/data/make_graded_interior_profiles.py  (or the ranges
-"0 30" and "30 60" in two processes, each printing its points as JSON lines to a part file, then
+"0 32" and "32 64" in two processes, each printing its points as JSON lines to a part file, then
 python tests/data/make_graded_interior_profiles.py --join PART1 PART2)
 """
 import json
@@ -69,8 +69,9 @@ def stress(r, z, k, n):
 
 
 def cases():
-    """The 60 points (r, z, k, n), drawn in a fixed order from a seeded generator: 40 anywhere, 20 near the
-    axis and the surface, where the pressure's centre behaviour rho^(n+k-1) matters most."""
+    """The 64 points (r, z, k, n), drawn in a fixed order from a seeded generator: 40 anywhere, 20 near the
+    axis and the surface, where the pressure's centre behaviour rho^(n+k-1) matters most; and 4 of the
+    steep power law n = 50 (its pressure turns within about a/50 of the edge)."""
     rng = random.Random(2929)
     out = []
     for i in range(60):
@@ -83,6 +84,7 @@ def cases():
             r = rng.choice((0.0, rng.uniform(0, 0.05)))
             z = 10 ** rng.uniform(-3.0, -1.0)
         out.append((r, z, k, n))
+    out += [(1.2, 0.8, 0.25, 50.0), (0.5, 0.3, 0.75, 50.0), (0.98, 0.05, 0.25, 50.0), (0.0, 0.5, 0.75, 50.0)]
     return out
 
 

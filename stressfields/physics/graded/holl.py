@@ -71,12 +71,13 @@ def surface_limit(p, k) -> dict[str, np.ndarray]:
     return {"rr": side + zero, "tt": side + zero, "zz": -p + zero, "rz": zero}
 
 
-def _radial_panels(r, z, q, tip=0):
+def _radial_panels(r, z, q, tip=0, layer=None):
     """(base, offsets): the panel ends per point as offsets (rows, ascending) from ``base`` = r inside the
     contact, 1 (the edge) outside; the last panel [ends[-2], 1] ends at the edge.  Offsets keep the
     distance rho - r of the nodes next to a thin layer free of rounding (r + 1e-99 is r).  ``tip`` > 0:
     panels growing by q from the centre, cuts at rho = q^-j down to X q^-tip, X the first end beyond 0
-    (G70)."""
+    (G70).  ``layer``: ends at rho = 1 - layer q^j as well (G70), for a pressure that changes over a layer of
+    that width at the edge."""
     inside = r < 1.0
     h = np.where(inside, np.minimum(z, 1.0 - r), np.minimum(np.hypot(r - 1.0, z), 1.0))
     base = np.where(inside, r, 1.0)
@@ -108,13 +109,18 @@ def _radial_panels(r, z, q, tip=0):
         J = int(np.ceil(-np.log(np.min(low)) / math.log(q)))
         cuts = np.maximum(q ** -np.arange(1.0, J + 1.0), low[:, None])
         ends = np.sort(np.column_stack([ends, cuts - base[:, None]]), axis=1)
+    if layer is not None:
+        # from the edge inwards, widths layer q^j up to 1/2 (offsets from base, at least -base: the centre)
+        steps = layer * q ** np.arange(0.0, max(math.ceil(math.log(0.5 / layer) / math.log(q)), 0) + 1.0)
+        cuts = np.maximum((1.0 - base)[:, None] - steps, -base[:, None])
+        ends = np.sort(np.column_stack([ends, cuts]), axis=1)
     return base, ends
 
 
 def _radial_rule(r, z, e, q, n, shape=None, tip=0):
     """Nodes as (rho, rho - r) (rows) and weights including the pressure (1 - rho^2)^e (Gauss-Jacobi on
     the last panel), times ``shape(rho)`` if given; ``tip`` as :func:`_radial_panels`."""
-    base, ends = _radial_panels(r, z, q, tip)
+    base, ends = _radial_panels(r, z, q, tip, None if shape is None else shape.layer)
     x0, x1 = ends[:, :-1], ends[:, 1:]
     t, wt = gauss_legendre(n)
     lo, hi = x0[:, :-1, None], x1[:, :-1, None]
@@ -251,6 +257,9 @@ def _tip_panels(s, q, rtol):
     return int(math.ceil(math.log(1.0 / eps) / math.log(q)))
 
 
+_M = 20
+
+
 class PressureShape:
     """S(rho) = Phi(rho) / (1 - rho^2)^e on 0 < rho < 1 (G70): the pressure shape ``phi`` of a power-law
     indenter (G18) without its edge factor, interpolated once and evaluated at every radial node.
@@ -260,14 +269,19 @@ class PressureShape:
     interpolation error is of the order 5.8^-20 ~ 1e-15 of S there); below 2^-41 ``phi`` itself.
     ``centre``: the exponent s of the part of S that goes like rho^s at the centre (s = n + k - 1 for a
     power law; rho^0 stands for log rho), None for a shape smooth in rho^2 there (the paraboloid); it
-    decides the extra radial panels of :func:`disc_stress`.
+    decides the extra radial panels of :func:`disc_stress`.  ``points`` per panel (20; more for a shape that
+    changes fast near the edge), ``layer``: the width of such an edge layer (f = A r^n: Phi is the flat
+    punch's shape (1 - rho^2)^(-(1-k)/2)/n away from the edge and turns to (1 - rho)^((1+k)/2) within
+    about a/n of it), None if there is none; :func:`disc_stress` then grades its radial panels towards the
+    edge from that width.
     """
 
-    _M = 20
     _J = 41
 
-    def __init__(self, phi, e: float, centre: float | None):
+    def __init__(self, phi, e: float, centre: float | None, points: int = _M, layer: float | None = None):
         self._phi, self.e, self.centre = phi, float(e), None if centre is None else float(centre)
+        self.layer = layer
+        self._M = int(points)
         i = np.arange(self._M)
         self._t = np.cos((2 * i + 1) * math.pi / (2 * self._M))          # Chebyshev points on [-1, 1]
         self._lam = (-1.0) ** i * np.sin((2 * i + 1) * math.pi / (2 * self._M))

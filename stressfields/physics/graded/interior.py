@@ -205,8 +205,10 @@ def _holl(T, idx, flat, A, RHO, Z, K, cN, dl, rtol):
 
 @functools.lru_cache(maxsize=32)
 def _shape(n: float, k: float) -> holl.PressureShape:
-    """The interpolated shape S = Phi / (1 - rho^2)^((1+k)/2) of f = A r^n (G70), once per (n, k)."""
-    return holl.PressureShape(lambda rho: pressure_shape(rho, k=k, n=n), 0.5 * (1.0 + k), n + k - 1.0)
+    """The interpolated shape S = Phi / (1 - rho^2)^((1+k)/2) of f = A r^n (G70), once per (n, k); for n > 4
+    with its edge layer of width 1/n and max(20, n) Chebyshev points per panel (measured: 1e-13 at n = 50)."""
+    return holl.PressureShape(lambda rho: pressure_shape(rho, k=k, n=n), 0.5 * (1.0 + k), n + k - 1.0,
+                              max(20, math.ceil(n)), 1.0 / n if n > 4.0 else None)
 
 
 def _invariants(names, T, flat, A, RHO, Z, K, NU, DG):
