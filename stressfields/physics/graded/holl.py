@@ -117,15 +117,25 @@ def _radial_panels(r, z, q, tip=0, layer=None):
     return base, ends
 
 
-def _radial_rule(r, z, e, q, n, shape=None, tip=0):
+def _radial_rule(r, z, e, q, n, shape=None, tip=(0, 1)):
     """Nodes as (rho, rho - r) (rows) and weights including the pressure (1 - rho^2)^e (Gauss-Jacobi on
-    the last panel), times ``shape(rho)`` if given; ``tip`` as :func:`_radial_panels`."""
-    base, ends = _radial_panels(r, z, q, tip, None if shape is None else shape.layer)
+    the last panel), times ``shape(rho)`` if given; ``tip`` = (panels, power): the panels of
+    :func:`_radial_panels` towards the centre, and the power m of the map rho = X u^m on the panel [0, X]
+    that touches it (G70)."""
+    base, ends = _radial_panels(r, z, q, tip[0], None if shape is None else shape.layer)
     x0, x1 = ends[:, :-1], ends[:, 1:]
     t, wt = gauss_legendre(n)
     lo, hi = x0[:, :-1, None], x1[:, :-1, None]
-    off = lo + (hi - lo) * t                          # rho - base
-    w = (hi - lo) * wt
+    if tip[1] > 1:
+        # on the centre's panel u^m turns A + rho^s B into smooth terms and u^(m(2+s)-1) (G70)
+        centre = lo <= -base[:, None, None]
+        tm = np.where(centre, t ** tip[1], t)
+        wm = np.where(centre, tip[1] * t ** (tip[1] - 1) * wt, wt)
+        off = lo + (hi - lo) * tm
+        w = (hi - lo) * wm
+    else:
+        off = lo + (hi - lo) * t                      # rho - base
+        w = (hi - lo) * wt
     b3, edge = base[:, None, None], (1.0 - base)[:, None, None]
     with np.errstate(invalid="ignore"):
         press = np.where(off < edge, ((edge - off) * (1.0 + b3 + off)) ** e[:, None, None], 0.0)
@@ -220,7 +230,7 @@ def disc_stress(rho, zeta, k, e, rtol: float = 1e-10, shape=None) -> dict[str, n
                        for v in np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (rho, zeta, k, e))))
     o = orders(rtol)
     n, q = o[0], o[1]
-    tip = 0 if shape is None else _tip_panels(shape.centre, q, rtol)
+    tip = (0, 1) if shape is None else _tip_panels(shape.centre, q, n, rtol)
     out = {c: np.empty(rho.size) for c in COMPONENTS}
     # blocks of points with similar panel counts (the rules are padded to the block's largest): by the
     # first panel width h of _radial_panels and the depth relative to the radius
@@ -247,14 +257,14 @@ def disc_stress(rho, zeta, k, e, rtol: float = 1e-10, shape=None) -> dict[str, n
     return out
 
 
-def _tip_panels(s, q, rtol):
-    """Panels towards the centre where the pressure goes like rho^s (G70): the part of [0, X] left on the
-    innermost panel [0, X eps] is eps^(2+s) of the whole, so eps^(2+s) = rtol/100 (an ungraded panel
-    there converges only algebraically)."""
+def _tip_panels(s, q, n, rtol):
+    """(panels, power) towards the centre where the pressure is A(rho^2) + rho^s B(rho^2) (G70): two panels
+    growing by q, then on the innermost one rho = X u^m, which leaves u^(2m-1) (smooth) and u^(m(2+s)-1),
+    whose n-point Gauss rule errs by about n^(-2m(2+s)): m(2+s) from rtol/100."""
     if s is None:       # a pressure smooth at the centre (even in rho, the paraboloid): no extra panels
-        return 0
-    eps = (0.01 * rtol) ** (1.0 / (2.0 + s))
-    return int(math.ceil(math.log(1.0 / eps) / math.log(q)))
+        return 0, 1
+    need = math.log(100.0 / rtol) / (2.0 * math.log(n))
+    return 2, max(1, math.ceil(need / (2.0 + s)))
 
 
 _M = 20
