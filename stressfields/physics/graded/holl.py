@@ -21,6 +21,11 @@ which turns the near-singular ring kernel R^-(chi+2) = (D cosh u)^-(chi+2) into 
 Gauss panels of fixed length in u (their number grows like log(r/D)), and plain Gauss on [pi/2, pi].
 Node counts from rtol (``orders``).
 
+Any other power-law indenter (G70): its pressure (1 - rho^2)^((1+k)/2) S(rho), with S interpolated once
+(``PressureShape``) and evaluated at every radial node; two more panels towards the centre, where the
+pressure goes like rho^(n+k-1), and the map rho = X u^m on the innermost one; for a steep profile panels
+graded from the width of its edge layer.
+
 Pure NumPy; arrays in, arrays out; lengths in units of the contact radius (rho = r/a, zeta = z/a).
 """
 from __future__ import annotations
