@@ -229,8 +229,8 @@ def disc_stress(rho, zeta, k, e, rtol: float = 1e-10, shape=None) -> dict[str, n
 
     ``shape`` (a :class:`PressureShape` of one k, e its edge exponent): the pressure is
     (1 - rho^2)^e shape(rho), smooth at the edge but with the centre behaviour rho^(n+k-1) of a power-law
-    indenter, which the extra panels towards rho = 0 of (G70) resolve; the error is then at most rtol of
-    the largest value of the pressure away from the centre (its value at rho = 1/2, say)."""
+    indenter, which the extra panels towards rho = 0 of (G70) resolve; the error is then at most
+    rtol max(|value|, p_m), p_m the mean of the pressure over the disc (measured, (G70))."""
     rho, zeta, k, e = (np.ascontiguousarray(v, dtype=float).ravel()
                        for v in np.broadcast_arrays(*(np.asarray(v, dtype=float) for v in (rho, zeta, k, e))))
     o = orders(rtol)
@@ -272,6 +272,7 @@ def _tip_panels(s, q, n, rtol):
     return 2, max(1, math.ceil(need / (2.0 + s)))
 
 
+#: Chebyshev points per dyadic panel of PressureShape (the default; steep shapes take more)
 _M = 20
 
 
@@ -279,13 +280,14 @@ class PressureShape:
     """S(rho) = Phi(rho) / (1 - rho^2)^e on 0 < rho < 1 (G70): the pressure shape ``phi`` of a power-law
     indenter (G18) without its edge factor, interpolated once and evaluated at every radial node.
 
-    ``phi`` is called once, on the nodes of the interpolant: 20 Chebyshev points on each dyadic panel
-    [2^-(j+1), 2^-j], j = 0..40 (S is analytic except at rho = 0, three half-widths beyond each panel: the
-    interpolation error is of the order 5.8^-20 ~ 1e-15 of S there); below 2^-41 ``phi`` itself.
+    ``phi`` is called once, on the nodes of the interpolant: ``points`` Chebyshev points on each dyadic
+    panel [2^-(j+1), 2^-j], j = 0..40 (S is analytic except at rho = 0, three half-widths beyond each
+    panel: with 20 the interpolation error is of the order 5.8^-20 ~ 1e-15 of S there); below 2^-41
+    ``phi`` itself.
     ``centre``: the exponent s of the part of S that goes like rho^s at the centre (s = n + k - 1 for a
     power law; rho^0 stands for log rho), None for a shape smooth in rho^2 there (the paraboloid); it
-    decides the extra radial panels of :func:`disc_stress`.  ``points`` per panel (20; more for a shape that
-    changes fast near the edge), ``layer``: the width of such an edge layer (f = A r^n: Phi is the flat
+    decides the extra radial panels of :func:`disc_stress`.  ``points``: more than 20 for a shape that
+    changes fast near the edge; ``layer``: the width of such an edge layer (f = A r^n: Phi is the flat
     punch's shape (1 - rho^2)^(-(1-k)/2)/n away from the edge and turns to (1 - rho)^((1+k)/2) within
     about a/n of it), None if there is none; :func:`disc_stress` then grades its radial panels towards the
     edge from that width.
