@@ -73,8 +73,8 @@ MATERIAL = (E0, C0, NU, K)
 #: below the surface (docs/theory/graded.md section 10): solved for k = 0 (any nu) and for k > 0 with
 #: nu = 1/(2+k), which `poisson = "holl_ratio"` sets
 Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface); given, the "
-              "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k) (the "
-              "paraboloid at k > 0)", low=0.0, high=1e6, label="depth z / a", axis="Z")
+              "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k), for the "
+              "power-law profiles (parabolic, conical, power_law)", low=0.0, high=1e6, label="depth z / a", axis="Z")
 # no default: a recipe without it is recorded (and hashed) as before the choice existed
 POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu; also when omitted) or 'holl_ratio' "
                       "(nu = 1/(2+k), following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
@@ -110,8 +110,8 @@ def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, .
                  for n, m in what) + (
         Variable("stress_validity", "validity of the stress variables at the point", dims=dims, dtype="int8",
                  always=True, **declare(STRESS_CODES, where={
-                     V.unbounded_at_singular_point: f"{edge}the conical tip r = 0 at z = 0 and k = 0, where the "
-                                                    "pressure is unbounded"},
+                     V.unbounded_at_singular_point: f"{edge}the centre r = 0 at z = 0 where the pressure is "
+                                                    "unbounded: the cone at k = 0, a power law with n + k <= 1"},
                      note="Only the stress variables in this file are considered."),
                  label="validity of the stresses"),
     )
@@ -124,23 +124,34 @@ _SEARCH = ("Found by the search of physics.axisymmetric.peaks on the graded fiel
            "adhesive edge, the conical tip at k = 0) the peak is +inf there, depth 0, and peak_validity is 1.")
 
 
-def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
-    """The per-case peaks of tau_max and von Mises in the half-space and where they sit."""
+_SEARCH_T = ("Found by the search of physics.axisymmetric.peaks on the field of the lower body at k = 0 "
+             "(physics.graded.interior.tangential_peaks: c_N* of the pair times the axisymmetric family's peaks): "
+             "the surface singular points x = 0, +-c, +-a first, a grid over x in [-2, 2] and depths 0 and 1e-3 a "
+             "to 3a, a bounded Nelder-Mead refinement to 1e-9 a; the value is the field at the refined point, the "
+             "position accurate to about 1e-7 a. Where the field is unbounded at a surface singular point (the "
+             "conical tip) the peak is +inf there, depth 0, and peak_validity is 1.")
+
+
+def peak_variables(case: tuple[str, ...], position: str = "rho") -> tuple[Variable, ...]:
+    """The per-case peaks of tau_max and von Mises in the half-space and where they sit: ``position`` "rho"
+    (the radius r/a) or "x" (x/a signed along the tangential load, graded_tangential)."""
     out = []
+    search = _SEARCH if position == "rho" else _SEARCH_T
+    where = "radius r/a" if position == "rho" else "coordinate x/a (signed, along the tangential load)"
     for name, what in (("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"),
                        ("von_mises", "von Mises equivalent stress sqrt(3 J2)")):
         out += [Variable(f"{name}_peak", f"largest {what} in the half-space z >= 0", units="Pa", dims=case,
-                         comment=_SEARCH, label=f"peak {name}"),
-                Variable(f"{name}_peak_rho", f"radius r/a of the largest {what}", dims=case, comment=_SEARCH,
-                         label=f"r/a of peak {name}"),
-                Variable(f"{name}_peak_depth", f"depth z/a of the largest {what}", dims=case, comment=_SEARCH,
+                         comment=search, label=f"peak {name}"),
+                Variable(f"{name}_peak_{position}", f"{where} of the largest {what}", dims=case, comment=search,
+                         label=f"{'r' if position == 'rho' else 'x'}/a of peak {name}"),
+                Variable(f"{name}_peak_depth", f"depth z/a of the largest {what}", dims=case, comment=search,
                          label=f"z/a of peak {name}")]
     out.append(Variable(
         "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
         always=tuple(v.name for v in out), **declare(PEAK_CODES, where={
             V.unbounded_at_singular_point: "at a surface singular point: +inf there, depth 0",
             V.undefined_direction_dependent_limit: "at a surface singular point",
-            V.search_not_converged: "its box: rho = 2, z = 3a"},
+            V.search_not_converged: f"its box: {'rho = 2' if position == 'rho' else '|x| = 2'}, z = 3a"},
             note="Written whenever a peak variable is."),
         label="validity of the peaks"))
     return tuple(out)
@@ -508,7 +519,7 @@ T_VARS = (
                  V.undefined_direction_dependent_limit: "the tip in gross slip",
                  V.not_resolved_below_the_surface: "the 1-D routes of the axisymmetric family"}),
              label="validity of the stresses"),
-)
+) + peak_variables(PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx",), position="x")
 
 
 def _pair(p):
@@ -533,6 +544,7 @@ def _evaluate_tangential(names, p, options):
                   nu=nu, E0=e0, E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
     out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, **values)
     out.update(_tangential_stress(names, p, options, values))
+    out.update(_tangential_peaks(names, p, options, values))
     if "coupling" in names:
         ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
         out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
@@ -561,13 +573,28 @@ def _tangential_stress(names, p, options, values) -> dict:
     return got
 
 
+def _tangential_peaks(names, p, options, values) -> dict:
+    """The requested peaks of the lower body (k = 0)."""
+    from ..physics.graded.interior import TANGENTIAL_PEAKS, tangential_peaks
+
+    if not any(n in TANGENTIAL_PEAKS for n in names):
+        return {}
+    found = tangential_peaks(_indenter(p), a=values["a"], fx=values["fx"], mu=values["mu"], k=values["k"],
+                             nu=values["nu"], E0=values["E0"], c0=values["c0"], E0_2=values["E0_2"],
+                             nu_2=values["nu_2"], method=options["method"], rtol=options["rtol"])
+    return {n: found[n] for n in names if n in TANGENTIAL_PEAKS}
+
+
 def _check_tangential(values, physical, options):
     problems = _check_profile(values)
-    if (values.get("z") is not None or values.get("x") is not None) and np.any(np.asarray(values.get("k")) > 0.0):
-        problems.append(f"z or x is given with k = {float(np.max(values['k']))!r}: below the surface under tangential "
+    below = values.get("z") is not None or values.get("x") is not None
+    peaks = [n for n in getattr(values, "variables", ()) if n.endswith("_peak") or "_peak_" in n]
+    what = "z or x is given" if below else f"{peaks[0]} is asked for" if peaks else ""
+    if what and np.any(np.asarray(values.get("k")) > 0.0):
+        problems.append(f"{what} with k = {float(np.max(values['k']))!r}: below the surface under tangential "
                         "load the graded family solves k = 0")
-    elif (values.get("z") is not None or values.get("x") is not None) and values.get("profile") == "tabulated":
-        problems.append("z or x is given with profile = 'tabulated': below the surface under tangential load the "
+    elif what and values.get("profile") == "tabulated":
+        problems.append(f"{what} with profile = 'tabulated': below the surface under tangential load the "
                         "graded family solves the parabolic, conical and power-law profiles at k = 0")
     if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
         return problems
