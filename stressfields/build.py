@@ -17,7 +17,6 @@ import warnings
 
 import numpy as np
 import xarray as xr
-from dask.array import PerformanceWarning
 
 from . import cf
 from .recipe import POINT, Recipe, RecipeError, chunk_problems
@@ -33,7 +32,10 @@ PARALLEL_ABOVE = 200_000
 MIN_TASKS = 4
 
 
-def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
+def build(recipe: Recipe, chunks: dict[str, int] | None = None, *, evaluate_group=None) -> xr.Dataset:
+    """The recipe's dataset, lazy: one dask task per chunk and group of variables. ``evaluate_group``
+    (the signature of `_evaluate_group`) replaces the lazy evaluation of each group: `compare`
+    computes its reference at once, in NumPy, without importing dask.array."""
     scen = recipe.scenario
     physical = recipe.physical
     sizes = recipe.shape
@@ -67,14 +69,17 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
                 coords[par.name] = xr.Variable((), value, cf.coord_attrs(par, physical))
     options = {"method": recipe.method, "rtol": recipe.rtol, "physical": physical, "sweep": recipe.values}
 
-    route = scen.route(recipe.values, recipe.method, recipe.rtol) if scen.route else None
-    for dims, names in _groups(recipe).items():
-        outputs = _evaluate_group(recipe, dims, names, fixed, options, chunking)
+    groups = _groups(recipe)
+    # each float variable says the route and accuracy of its own group (displacements, peaks and the
+    # contact quantities may take other routes than the stresses): the family's route table decides
+    routes = scen.routes(recipe.values, recipe.method, recipe.rtol, [n for names in groups.values() for n in names])
+    for dims, names in groups.items():
+        outputs = (evaluate_group or _evaluate_group)(recipe, dims, names, fixed, options, chunking)
         for name, arr in zip(names, outputs):
             var = scen.variable(name)
             attrs = cf.variable_attrs(var, physical)
-            if route and not var.flag_values and var.dtype.startswith("float"):
-                attrs["stressfields_method"], attrs["stressfields_accuracy"] = route
+            if var.group in routes and not var.flag_values and var.dtype.startswith("float"):
+                attrs["stressfields_method"], attrs["stressfields_accuracy"] = routes[var.group]
             (coords if var.coordinate else data_vars)[name] = xr.Variable(dims, arr, attrs)
 
     ds = xr.Dataset(data_vars, coords=coords, attrs=cf.global_attrs(recipe))
@@ -190,6 +195,8 @@ def _inputs(recipe, dims, names, chunking) -> dict[str, xr.DataArray]:
 
 
 def _evaluate_group(recipe, dims, names, fixed, options, chunking):
+    from dask.array import PerformanceWarning
+
     scen = recipe.scenario
     dtypes = [np.dtype(scen.variable(n).dtype) for n in names]
     inputs = _inputs(recipe, dims, names, chunking) if dims else {}

@@ -18,20 +18,21 @@ recipe's mode, except in a format that carries no units (VTU, Exodus II), whose 
 This module holds what the comparison needs of the recipe: the reference is the recipe with the
 coordinate columns as its ``[points]`` table (the recipe's own values of those parameters and its
 ``[points]`` are replaced), so it is evaluated at the nodes and nowhere else, within the accuracy
-its fields state (``stressfields_accuracy``); the scale S of each variable (its normalisation scale:
-1 in normalised mode, where values are already divided by it; in physical mode the mean contact
-pressure p_m for stresses, p_m/a for dpdz, p* and Delta_1 for the wavy fields, read from the
-reference; else the largest |reference| over the nodes); and the report folder, checked before
+its fields state (``stressfields_accuracy``); the scale S of each variable (its declared ``Scale``:
+1 in normalised mode, where values are already divided by it; in physical mode the scale's value,
+``Scale.value``, from the reference's variables and the recipe's values, e.g. the mean contact
+pressure p_m for stresses, p_m/a for dpdz, p* and Delta_1 for the wavy fields; where the scale
+declares none, the largest |reference| over the nodes); and the report folder, checked before
 anything is computed and published whole. The statistics are `fe.stats`'.
 """
 from __future__ import annotations
 
 import json
-import math
 import os
 import re
 import shutil
 import stat
+import sys
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -42,7 +43,7 @@ import xarray as xr
 
 from .errors import OutputError, name_problem
 from .pointfiles import MAX_POINTS_FILE_BYTES, Column, FileProblem, file_bytes, nc_columns
-from .recipe import MAX_RECIPE_BYTES, RecipeError, load
+from .recipe import MAX_RECIPE_BYTES, POINT, RecipeError, load
 from .scenarios import REGISTRY
 from .scenarios.base import ARRAY, Scenario
 from .units import UNITS  # noqa: F401 (the one table of units: `[points]` files and compare alike)
@@ -208,27 +209,18 @@ def _dataset_columns(ds: xr.Dataset, source: str) -> list[Column]:
 
 # --- the reference ---------------------------------------------------------------------------------
 
-#: normalisation scale (the start of a Variable.scale text) -> how its value is had in physical mode:
-#: variables of the reference to divide, or a function of the recipe values
-_SCALES = (
-    ("the mean contact pressure p_m", ("mean_pressure",), "mean_pressure"),
-    ("p_m/a", ("mean_pressure", "contact_radius"), "mean_pressure / contact_radius"),
-    ("the contact radius a", ("contact_radius",), "contact_radius"),
-    ("p* =", (), "p* = pi E/(1-nu^2) Delta_1/lambda_1"),
-    ("the amplitude Delta_1", (), "Delta_1"),
-    ("the contact half-width a", (), "a lambda_1/2"),
-)
 FALLBACK_SCALE = "max |reference| over the compared points"
 
 
 def _scale_spec(var, physical: bool) -> tuple[str, tuple[str, ...]]:
-    """(definition, variables of the reference it needs); in normalised mode a normalised variable's
-    values are already divided by its scale, so S = 1."""
-    if var.scale and not physical:
-        return "1 (values divided by " + var.scale + ")", ()
-    for start, needs, text in _SCALES:
-        if var.scale and var.scale.startswith(start):
-            return text, needs
+    """(definition, variables of the reference it needs) of S, from the variable's declared Scale: in
+    normalised mode a normalised variable's values are already divided by its scale, so S = 1; in
+    physical mode the scale's value (``Scale.value``), or the largest |reference| where it declares none."""
+    scale = var.scale
+    if scale is not None and not physical:
+        return "1 (values divided by " + scale.text + ")", ()
+    if scale is not None and scale.value is not None:
+        return scale.definition, scale.needs
     return FALLBACK_SCALE, ()
 
 
@@ -263,44 +255,119 @@ def _count(sweep) -> int | str:
 
 
 def _reference(derived: dict, label: str, source: str) -> xr.Dataset:
-    import sys
+    """The recipe's dataset at the nodes as `generate` gives it, computed now (`_evaluate_now`)."""
+    from .build import build
 
-    import dask
-
-    from .api import generate
-
-    scheduler = {}
-    if "distributed" not in sys.modules and dask.config.get("scheduler", None) is None:
-        import dask.threaded
-
-        # the threaded scheduler itself: the default (and one named) makes dask look for a distributed
-        # client first, importing dask.distributed when installed (0.15 s of a small comparison here);
-        # a user's own client (distributed imported) or configured scheduler is kept
-        scheduler["scheduler"] = dask.threaded.get
+    _dask_arrays_once_imported()
     try:
-        return generate(derived).compute(**scheduler)
+        return build(load(derived), evaluate_group=_evaluate_now)
     except RecipeError as exc:
         raise CompareError(f"{label} with the nodes of {source} as [points] (points.<column>[i] is data row i, "
                            "from 0, in the recipe's units): " + "; ".join(exc.problems)) from None
 
 
-def _scale_value(definition: str, needs, ref: xr.Dataset, reference: np.ndarray) -> np.ndarray:
-    """S at every point: 1, the reference's own scale variables, the recipe's values, or max |reference|."""
+class _DaskArrays:
+    """xarray's record of dask as an array library, with dask.array imported only when needed.
+
+    xarray asks, of every array it wraps, whether it is a dask array, and to know dask's array type
+    imports dask.array whenever dask is installed (0.3-0.5 s of a cold `compare`, which has none). No
+    object can be a dask array before dask.array is imported, so the type is () until then and
+    dask.array's Array after; anything else xarray asks of the record (the module, its version) gets
+    the full record, which then replaces this one."""
+
+    @property
+    def type(self) -> tuple:
+        module = sys.modules.get("dask.array")
+        return (module.Array,) if module is not None and hasattr(module, "Array") else ()
+
+    def __getattr__(self, name):
+        from xarray.namedarray import pycompat
+
+        full = pycompat.DuckArrayModule("dask")
+        pycompat._cached_duck_array_modules["dask"] = full
+        return getattr(full, name)
+
+
+def _dask_arrays_once_imported() -> None:
+    """Install `_DaskArrays` unless xarray has looked for dask already (or keeps its record elsewhere:
+    then dask.array is imported as before, nothing else changes)."""
+    try:
+        from xarray.namedarray import pycompat
+    except ImportError:
+        return
+    cache = getattr(pycompat, "_cached_duck_array_modules", None)
+    if isinstance(cache, dict) and hasattr(pycompat, "DuckArrayModule") and "dask" not in cache:
+        cache["dask"] = _DaskArrays()
+
+
+def _evaluate_now(recipe, dims, names, fixed, options, chunking) -> list[np.ndarray]:
+    """`build`'s evaluation of one group of variables, done now by the kernels (`procedural.evaluate`):
+    no dask graph and no import of dask.array (0.3-0.5 s of a cold `compare` of 1e5 nodes here). The
+    nodes are cut into the lazy dataset's chunks (`chunking`), each evaluated on its own, on every core
+    when there are several: the kernels' temporaries take the memory of a chunk per core, as the lazy
+    dataset's do (1e6 nodes: 469 MB peak against 457-470 MB through dask, measured). Every value
+    depends on its own point alone, so the values are the lazy dataset's bit for bit. A comparison's
+    recipe sweeps only its [points] (`_derived_recipe`)."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from .procedural import evaluate
+
+    scen = recipe.scenario
+    dtypes = [np.dtype(scen.variable(n).dtype) for n in names]
+    if not dims:            # per-case values (the contact radius, p_m): scalars, as the lazy dataset has them
+        result = evaluate(recipe, names, dict(fixed), options["sweep"])
+        return [np.asarray(np.broadcast_to(np.asarray(result[n], dtype=dt), ())) for n, dt in zip(names, dtypes)]
+    if dims != (POINT,):
+        raise CompareError(f"scenario '{scen.name}' gives {', '.join(names)} along "
+                           f"{', '.join(d for d in dims if d != POINT)} as well as the nodes; compare takes fields "
+                           "that vary with the nodes alone")
+    deps = [scen.variable(n).dims for n in names]
+    # the columns of the nodes this group depends on, as `build._inputs` chooses them
+    columns = [c for c in recipe.points if any(d is None or c in d for d in deps)]
+    size, step = recipe.shape[POINT], chunking[POINT]
+    out = [np.empty(size, dt) for dt in dtypes]
+
+    def block(lo: int) -> None:
+        hi = min(size, lo + step)
+        params = dict(fixed)
+        params.update({c: recipe.values[c][lo:hi] for c in columns})
+        result = evaluate(recipe, names, params, options["sweep"])
+        for arr, name, dt in zip(out, names, dtypes):
+            arr[lo:hi] = np.broadcast_to(np.asarray(result[name], dtype=dt), (hi - lo,))
+
+    starts = range(0, size, step)
+    if len(starts) == 1:
+        block(0)
+        return out
+    pool = ThreadPoolExecutor(min(len(starts), os.cpu_count() or 1))
+    try:
+        list(pool.map(block, starts))           # a kernel's exception is raised here
+    except BaseException as exc:
+        # the chunks not started are dropped; after an interrupt (Ctrl-C, a signal) the running ones
+        # are not waited for either
+        pool.shutdown(wait=isinstance(exc, Exception), cancel_futures=True)
+        raise
+    pool.shutdown()
+    return out
+
+
+def _scale_value(var, physical: bool, ref: xr.Dataset, reference: np.ndarray) -> np.ndarray:
+    """S at every point (``_scale_spec``): 1, the Scale's value from the reference's variables and the
+    recipe's values, or max |reference| (also where a value it reads is a column of the nodes)."""
+    definition, needs = _scale_spec(var, physical)
     if definition.startswith("1 "):
         return np.ones_like(reference)
-    if definition == FALLBACK_SCALE or (needs and not all(n in ref for n in needs)):
-        finite = reference[np.isfinite(reference)]
-        return np.full_like(reference, np.max(np.abs(finite)) if finite.size else np.nan)
-    if needs:
-        s = ref[needs[0]] / ref[needs[1]] if len(needs) == 2 else ref[needs[0]]
-        return np.broadcast_to(np.asarray(s.values, dtype=float), reference.shape).copy()
-    p = json.loads(ref.attrs["stressfields_recipe_canonical"])["parameters"]
-    if not {"amplitudes", "a", "lambda_1", "E", "nu"} <= set(p):     # one of them is a column of nodes
-        return _scale_value(FALLBACK_SCALE, (), ref, reference)
-    amps = p["amplitudes"]
-    s = {"Delta_1": amps[0], "a lambda_1/2": p["a"] * p["lambda_1"] / 2.0,
-         "p* = pi E/(1-nu^2) Delta_1/lambda_1": math.pi * p["E"] / (1.0 - p["nu"] ** 2) * amps[0] / p["lambda_1"]}
-    return np.full_like(reference, s[definition])
+    if definition != FALLBACK_SCALE and all(n in ref for n in needs):
+        quantities = {**json.loads(ref.attrs["stressfields_recipe_canonical"])["parameters"],
+                      **{n: ref[n] for n in needs}}
+        try:
+            value = var.scale.value(quantities)
+        except KeyError:            # a value it reads is a column of the nodes
+            value = None
+        if value is not None:
+            return np.broadcast_to(np.asarray(value, dtype=float), reference.shape).copy()
+    finite = reference[np.isfinite(reference)]
+    return np.full_like(reference, np.max(np.abs(finite)) if finite.size else np.nan)
 
 
 def summary(ds: xr.Dataset) -> dict[str, dict]:

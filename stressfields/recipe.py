@@ -321,11 +321,12 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
                             f"{', in ' + par.units_in(physical) if par.units_in(physical) != '1' else ''})")
     if scen.complete and not problems:
         scen.complete(values)
+    method, rtol = _method(scen, method_t, problems)
     if scen.check and not problems:
         listed = output.get("variables")
         listed = tuple(v for v in listed if isinstance(v, str)) if isinstance(listed, list) else ()
         marked = CheckValues(values, tuple(k for k in columns if k in values), listed)
-        problems += scen.check(marked, physical, method_t.get("method", "auto"))
+        problems += scen.check(marked, physical, {"method": method, "rtol": rtol})
 
     swept = tuple(p.name for p in scen.parameters
                   if isinstance(values.get(p.name), np.ndarray) and p.name not in columns)
@@ -338,7 +339,11 @@ def _validate(data: dict, text: str | None, label: str, base: Path | None = None
     if not problems:
         problems += chunk_problems({d: len(values[points[0] if d == POINT else d]) for d in dims}, chunks,
                                    "output.chunks")
-    method, rtol = _method(scen, method_t, problems)
+    if method_t and not problems:
+        # only a recipe that names its method or rtol can ask for one without a route (every table takes
+        # the defaults: tests/test_routes.py), so a plain recipe is checked without loading a kernel
+        problems += scen.route_problems(CheckValues(values, points, variables), {"method": method, "rtol": rtol},
+                                        variables)
     title = data.get("title", f"stressfields {name}")
     if not isinstance(title, str):
         problems.append(f"title = {show(title)} must be a string")

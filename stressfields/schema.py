@@ -112,7 +112,8 @@ def scenario_record(scen: Scenario) -> dict:
                    "when": p.condition() or None} for p in scen.parameters]
     variables = [{"name": v.name, "long_name": v.label_in(v.mode == "physical"), "description": v.long_name,
                   "units": None if v.flag_values else v.units, "units_physical": None if v.flag_values
-                  else v.units_in(True), "normalisation": v.scale, "dtype": v.dtype, "mode": v.mode,
+                  else v.units_in(True), "normalisation": v.scale.text if v.scale else None, "dtype": v.dtype,
+                  "mode": v.mode,
                   "flag_values": list(v.flag_values), "flag_meanings": list(v.flag_meanings),
                   "depends_on": None if v.dims is None else [d for d in v.dims
                                                              if d in {p.name for p in scen.parameters}]}
@@ -144,4 +145,4 @@ def _variable_row(v: Variable, scen: Scenario) -> str:
     units = "-" if v.mode == "physical" else ("flag" if v.flag_values else v.units)
     phys = "-" if v.mode == "normalised" else ("flag" if v.flag_values else v.units_in(True))
     label = v.label_in(v.mode == "physical")
-    return f"| `{v.name}` | {label} | {v.long_name} | {units} | {phys} | {v.scale or '-'} | {dims} |"
+    return f"| `{v.name}` | {label} | {v.long_name} | {units} | {phys} | {v.scale.text if v.scale else '-'} | {dims} |"

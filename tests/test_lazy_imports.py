@@ -1,6 +1,7 @@
 """The commands that compute nothing load no heavy library: `--help`, `list`, `describe`, `schema`
 and `validate` (of a recipe whose check needs no kernel) import neither xarray nor dask (nor
-dask.distributed) nor SciPy nor any physics kernel (the declarations read ``physics.names``), and
+dask.distributed) nor SciPy nor any physics kernel (the declarations read ``physics.names`` and the validity table
+of ``physics.flags``), and
 neither does `import stressfields`."""
 import importlib
 import statistics
@@ -13,8 +14,9 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = ("xarray", "dask", "distributed", "scipy")
-#: the physics modules a command that computes nothing may load: the shared names, nothing of a family
-LIGHT_PHYSICS = ("stressfields.physics", "stressfields.physics.names")
+#: the physics modules a command that computes nothing may load: the shared names and the one table of
+#: validity codes (the declarations build their flag attributes from it), nothing of a family
+LIGHT_PHYSICS = ("stressfields.physics", "stressfields.physics.names", "stressfields.physics.flags")
 
 PROBE = """
 import contextlib, io, sys

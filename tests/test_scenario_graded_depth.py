@@ -44,6 +44,38 @@ def test_k0_equals_the_axisymmetric_parabolic_scenario():
                                    atol=1e-12 * np.max(np.abs(want)))
 
 
+def test_cone_and_power_law_at_k_above_zero_below_the_surface():
+    """k > 0, nu = 1/(2+k): the cone and f = A r^0.6 (n + k < 1: p(0) = +inf) are solved; the surface is -pressure
+    bit for bit, the centre of the sharp power law on the surface is unbounded (flag 1), the rest finite (0)."""
+    for profile, geometry in (("conical", {"tan_theta": 0.1}), ("power_law", {"n": 0.6, "A": 0.05})):
+        params = {**{k: v for k, v in BASE.items() if k != "R"}, **geometry, "profile": profile, "k": 0.3,
+                  "poisson": "holl_ratio", "rho": [0.0, 0.5, 1.2], "z": [0.0, 0.3]}
+        ds = sf.generate({"scenario": "graded_normal", "parameters": params, "output": {
+            "variables": ["pressure", "sigma_zz", "tau_max", "stress_validity"]}}).compute()
+        surf = ds.sel(z=0.0)
+        assert np.array_equal(surf.sigma_zz.values, -surf.pressure.transpose(*surf.sigma_zz.dims).values)
+        tip = profile == "power_law"
+        assert int(surf.stress_validity.sel(rho=0.0)) == int(tip) and np.isposinf(surf.tau_max.sel(rho=0.0)) == tip
+        rest = ds.where(~((ds.rho == 0.0) & (ds.z == 0.0)))
+        assert int(rest.stress_validity.max()) == 0 and np.isfinite(ds.sigma_zz.sel(z=0.3)).all()
+
+
+def test_graded_tangential_peaks_are_the_axisymmetric_familys_times_the_pair_modulus():
+    """k = 0, rigid counter-body (the uncoupled traction, as the axisymmetric family's): c_N* = E*, so the peaks
+    are those of the axisymmetric `parabolic` scenario under the same force ratio (another scenario, another
+    entry point)."""
+    nu, mu, fx = 0.3, 0.3, 0.6
+    g = run({"k": 0.0, "nu": nu, "mu": mu, "fx": fx, "body2": "rigid", "uncoupled_approximation": "flag"},
+            ["tau_max_peak", "tau_max_peak_x", "tau_max_peak_depth", "peak_validity"], "graded_tangential")
+    ax = sf.generate({"scenario": "parabolic", "parameters": {
+        "nu": nu, "E": E0, "R": R, "delta": A_RAD ** 2 / R, "mu": mu, "fx": fx, "x": 0.0, "y": 0.0},
+        "output": {"variables": ["tau_max_peak", "tau_max_peak_r", "tau_max_peak_depth"]}}).compute()
+    assert float(g.tau_max_peak) == pytest.approx(float(ax.tau_max_peak), rel=1e-9)
+    assert float(g.tau_max_peak_x) == pytest.approx(float(ax.tau_max_peak_r) / A_RAD, abs=1e-6)
+    assert float(g.tau_max_peak_depth) == pytest.approx(float(ax.tau_max_peak_depth) / A_RAD, abs=1e-6)
+    assert int(g.peak_validity) == 0
+
+
 def _johnson_axis_tau(z, nu):
     """tau_max / p0 on the Hertz axis (Johnson 1985, sec. 3.4)."""
     sz = -1.0 / (1.0 + z * z)
@@ -72,19 +104,24 @@ def test_adhesive_edge_is_flagged_unbounded_and_the_interior_finite():
 
 @pytest.mark.parametrize("extra,expect", [
     ({"k": 0.5, "nu": 0.3, "z": 0.5}, "z is given, but nu = 0.3 with k = 0.5 is not solved below the surface"),
-    ({"k": 0.5, "poisson": "holl_ratio", "z": 0.5, "profile": "conical", "tan_theta": 0.1},
-     "z is given, but profile = 'conical' with k = 0.5 is not solved below the surface"),
+    ({"k": 0.5, "poisson": "holl_ratio", "z": 0.5, "profile": "tabulated", "profile_r": [0.0, 1e-3, 2e-3, 3e-3],
+      "profile_f": [0.0, 2.5e-5, 1e-4, 2.25e-4]},
+     "z is given, but profile = 'tabulated' is not solved below the surface"),
     ({"k": 0.0, "z": -0.5}, "z = -0.5 must be a number in [0, 1000000]"),
     ({"scenario": "graded_tangential", "k": 0.5, "poisson": "holl_ratio", "z": 0.2, "x": 0.5},
      "z or x is given with k = 0.5: below the surface under tangential load the graded family solves k = 0"),
+    ({"scenario": "graded_tangential", "k": 0.5, "poisson": "holl_ratio", "variables": "tau_max_peak"},
+     "tau_max_peak is asked for with k = 0.5: below the surface under tangential load the graded family solves "
+     "k = 0"),
 ])
 def test_unsupported_cases_and_negative_depth_exit_2_in_one_line(tmp_path, capsys, extra, expect):
     params = {**BASE, **extra}
     scenario = params.pop("scenario", "graded_normal")
+    variable = params.pop("variables", "sigma_zz")
     if "profile" in extra:
         params.pop("R")
     lines = [f"scenario = \"{scenario}\"", "[parameters]"] + [
-        f"{k} = {v!r}".replace("'", "\"") for k, v in params.items()] + ["[output]", "variables = [\"sigma_zz\"]"]
+        f"{k} = {v!r}".replace("'", "\"") for k, v in params.items()] + ["[output]", f"variables = [\"{variable}\"]"]
     recipe = tmp_path / "r.toml"
     recipe.write_text("\n".join(lines) + "\n")
     assert cli.main(["run", str(recipe), "-o", str(tmp_path / "x.nc"), "-q"]) == 2

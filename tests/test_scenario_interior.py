@@ -37,12 +37,9 @@ def _gen(scenario, params, names=NAMES, method=None):
 
 
 def _half_spread(tau, s1, s3):
-    """tau_max = (sigma_1 - sigma_3)/2: exact per unit E*, where the physics forms it; the scale to
-    the variables' units multiplies each of the three after their rounding, which moves the
-    difference by at most 2 ulp of the larger principal stress (two products and the subtraction,
-    each within half an ulp of it)."""
-    bound = 2 * np.spacing(np.maximum(np.abs(s1), np.abs(s3)))
-    np.testing.assert_array_less(np.abs(tau - (s1 - s3) / 2), bound + 1e-300)
+    """tau_max = (sigma_1 - sigma_3)/2: formed per unit E* and then scaled, so equal to the half spread of
+    the scaled principal stresses to the rounding of the scale's product (2 eps of the larger one)."""
+    assert np.all(np.abs(tau - (s1 - s3) / 2) <= 2 * np.finfo(float).eps * np.maximum(np.abs(s1), np.abs(s3)))
 
 
 @pytest.mark.parametrize("kind", sorted(PROFILES))

@@ -332,8 +332,8 @@ def _compare_one(base, data: dict, plan: _Plan, options: Options) -> xr.Dataset:
             w = np.ones(ok.sum()) if weights is None else weights[ok]
             offset = float(np.sum(w * (user[ok] - reference[ok])) / np.sum(w)) if ok.any() else 0.0
             user = user - offset
-        definition, needs = _scale_spec(declared, physical)
-        scale = _scale_value(definition, needs, ref.isel({POINT: slice(0, n)}) if POINT in ref.dims else ref,
+        definition, _ = _scale_spec(declared, physical)
+        scale = _scale_value(declared, physical, ref.isel({POINT: slice(0, n)}) if POINT in ref.dims else ref,
                              reference)
         diff = user - reference
         given = ref[CYLINDRICAL.get(name, name) if frame.cylindrical else name].attrs

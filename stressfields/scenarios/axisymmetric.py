@@ -19,13 +19,17 @@ The functions that compute import ``physics.axisymmetric`` when they run: the de
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
+from ..physics.flags import Validity as V
+from ..physics.flags import declare
 from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
 from .base import ARRAY, MAX_TABLE_SIZE, STR, Parameter, Scenario, Variable, table_step_problem
+from .scales import Case, Scale, apply_scales, effective_modulus
 
 if TYPE_CHECKING:
     from ..physics.axisymmetric import Profile
@@ -34,7 +38,30 @@ REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient o
              "in the contact plane of axisymmetric bodies under normal and tangential loading, "
              "Forschung im Ingenieurwesen (2020)")
 
-PM = "the mean contact pressure p_m = F_N/(pi a^2)"
+#: the codes of the field validity and of the peaks' (physics.flags)
+FIELD_CODES = (V.within_stated_accuracy, V.unbounded_at_singular_point, V.undefined_direction_dependent_limit,
+               V.not_resolved_below_the_surface)
+PEAK_CODES = (V.within_stated_accuracy, V.unbounded_at_singular_point, V.undefined_direction_dependent_limit,
+              V.search_not_converged)
+# -- the family's scales: the physics' values are per unit E* (stresses; dp/dz per E*/length),
+# per delta (displacements), lengths in the profile's unit; the block's Case (``case_of``) holds
+# a, p_m/E*, E*, delta, F_N/E* and mu, each computed when a factor first asks for it.  In normalised
+# mode the geometry is the unit one (a = 1), so dividing by a is exact.
+PM = Scale("p_m", "the mean contact pressure p_m = F_N/(pi a^2)",
+           lambda c, physical: c["E*"] if physical else 1.0 / c["p_m/E*"],
+           value=lambda q: q["mean_pressure"], needs=("mean_pressure",), definition="mean_pressure")
+PM_PER_A = Scale("(p_m/a)", "p_m/a, with p_m = F_N/(pi a^2) and a the contact radius",
+                 lambda c, physical: c["E*"] if physical else c["a"] / c["p_m/E*"],
+                 value=lambda q: q["mean_pressure"] / q["contact_radius"], needs=("mean_pressure", "contact_radius"),
+                 definition="mean_pressure / contact_radius")
+E_STAR = Scale("E*", "the effective modulus E* = E/(1-nu^2)", lambda c, physical: c["E*"] if physical else 1.0)
+RADIUS_A = Scale("a", "the contact radius a", lambda c, physical: 1.0 if physical else 1.0 / c["a"],
+                 value=lambda q: q["contact_radius"], needs=("contact_radius",), definition="contact_radius")
+DEPTH_DELTA = Scale("delta", "the indentation depth delta", lambda c, physical: c["delta"] if physical else 1.0)
+MU_FN = Scale("(mu F_N)", "mu F_N, the normal force times the coefficient of friction",
+              lambda c, physical: c["mu"] * c["F_N/E*"] * c["E*"] if physical else 1.0)
+MU_FN_DELTA = Scale("(mu F_N delta)", "mu F_N delta (coefficient of friction times normal force times indentation "
+                    "depth)", lambda c, physical: c["mu"] * c["F_N/E*"] * c["E*"] * c["delta"] if physical else 1.0)
 SPATIAL = ("y", "x")  # x last: a line along x is contiguous on disk
 DEPTH = ("z",) + SPATIAL  # z before y, x: a surface-parallel plane is contiguous on disk
 
@@ -139,18 +166,18 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                  dims=everything, label="shear stress tau_max"),
         Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z "
                  + ("(at z = 0: the limit z -> 0+)" if deep else "at z = 0+"),
-                 units_physical="Pa/m", scale="p_m/a, with p_m = F_N/(pi a^2) and a the contact radius",
+                 units_physical="Pa/m", scale=PM_PER_A,
                  dims=everything, label="gradient dp_h/dz"),
     ) + tuple(
         Variable(f"u_{c}", f"displacement component u_{c} {at}" + (" (positive into the body)" if c == "z" else ""),
-                 units_physical="m", scale="the indentation depth delta", dims=everything,
+                 units_physical="m", scale=DEPTH_DELTA, dims=everything,
                  comment=DISPLACEMENT_COMMENT, label=f"displacement u_{c}") for c in "xyz"
     ) + (
         Variable("stick_radius", "radius c of the stick zone (Cattaneo-Mindlin; 0 in gross slip; a under "
-                 "normal load only)", units_physical="m", scale="the contact radius a", dims=case,
+                 "normal load only)", units_physical="m", scale=RADIUS_A, dims=case,
                  label="stick radius c"),
         Variable("mean_pressure", "mean contact pressure p_m = F_N/(pi a^2)", units_physical="Pa",
-                 scale="the effective modulus E* = E/(1-nu^2)", dims=load, label="mean pressure p_m"),
+                 scale=E_STAR, dims=load, label="mean pressure p_m"),
         Variable("contact_radius", "contact radius a", units="m", dims=load, mode="physical",
                  recorded_when=("normal_force",)),
         Variable("normal_force", "normal force F_N", units="N", dims=load, mode="physical"),
@@ -163,18 +190,33 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                  comment=("Of the surface point (x, y) above the field point: independent of the depth z."
                           if deep else None)),
         Variable("validity", f"validity of the field values at the {'point' if deep else 'surface point'}",
-                 dtype="int8", dims=everything, flag_values=(0, 1, 2, 3),
-                 flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                                "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
-                 comment=f"1: a value is +-inf where the exact field is unbounded ({singular}"
-                         + ("; all at z = 0" if deep else "") + "); 2: a value is NaN where "
-                         "the exact limit depends on the direction of approach (r = 0 under gross slip of a "
-                         "cone). " + ("Below the surface (z > 0) every exact value is finite; 3: a value there is NaN "
-                                      "because the point lies closer than ~1e-100 a to the axis or the surface, "
-                                      "which the 1-D routes do not resolve. " if deep else "")
-                         + "Only the variables in this file are considered.",
+                 dtype="int8", dims=everything,
+                 **declare(FIELD_CODES, where={
+                     V.unbounded_at_singular_point: singular + ("; all at z = 0" if deep else ""),
+                     V.undefined_direction_dependent_limit: "r = 0 under gross slip of a cone",
+                     **({V.not_resolved_below_the_surface: "below the surface (z > 0) every exact value is finite; "
+                         "a NaN there lies closer than ~1e-100 a to the axis or the surface"} if deep else {})},
+                     note="Only the variables in this file are considered."),
                  always=True, label="validity of the field values"),
     ) + (tangential_loads(case) if tangential else ())
+
+
+def group_of(name: str) -> str:
+    """The route group of a variable of the family (``routes.GROUPS``)."""
+    if name.startswith("u_"):
+        return "displacement"
+    if name == "dpdz":
+        return name
+    if name.endswith(("_peak", "_peak_r", "_peak_depth")):
+        return "peaks"
+    if name.startswith("sigma_") or name in ("von_mises", "tau_max"):
+        return "stress"
+    return "contact"
+
+
+def grouped(declared) -> tuple[Variable, ...]:
+    """The declarations, each float variable with its route group (``group_of``)."""
+    return tuple(dataclasses.replace(v, group=group_of(v.name)) if not v.flag_values else v for v in declared)
 
 
 def tangential_loads(case: tuple[str, ...]) -> tuple[Variable, ...]:
@@ -214,38 +256,27 @@ def make_profile(kind: str, p: Mapping[str, Any], physical: bool) -> Profile:
     return ax.tabulated(np.asarray(p["profile_r"]), np.asarray(p["profile_f"]))
 
 
-def effective_modulus(p: Mapping[str, Any]) -> np.ndarray:
-    """E* = E/(1 - nu^2) of the recipe (physical mode)."""
-    return _f(p, "E") / (1.0 - _f(p, "nu") ** 2)
+def e_star(p: Mapping[str, Any]) -> np.ndarray:
+    """E* = E/(1 - nu^2) of the recipe (physical mode; ``scales.effective_modulus``)."""
+    return effective_modulus(_f(p, "E"), _f(p, "nu"))
 
 
 def punch_depth(p: Mapping[str, Any]) -> np.ndarray:
     """The flat punch's depth: delta, or F_N/(2 E* radius) of the normal force
     (docs/theory/axisymmetric.md (A8))."""
     if "normal_force" in p:
-        return _f(p, "normal_force") / (2.0 * effective_modulus(p) * _f(p, "radius"))
+        return _f(p, "normal_force") / (2.0 * e_star(p) * _f(p, "radius"))
     return _f(p, "delta")
 
 
-def scales(p: Mapping[str, Any], physical: bool, a, profile: Profile) -> tuple:
-    """The normalisation, as the (stress, dp/dz) factors from the physics' values per E* to the
-    variables' units: (E*, E*) in physical mode (Pa, Pa/m); (1/p_m, a/p_m) normalised, p_m per E*."""
-    if physical:
-        e_star = effective_modulus(p)
-        return e_star, e_star
+def case_of(p: Mapping[str, Any], profile: Profile, a) -> Case:
+    """The quantities the family's scales read for a block: the contact radius a (1 normalised),
+    p_m/E*, E* (physical mode), delta, F_N/E* and mu, each computed on first use."""
     from ..physics.axisymmetric import mean_pressure
 
-    pm = mean_pressure(a, profile)
-    return 1.0 / pm, a / pm
-
-
-def scaled(values: dict, scale, dpdz_scale) -> dict:
-    """``values`` of the physics (per unit E*) with the stresses and their invariants times
-    ``scale`` and dp/dz times ``dpdz_scale`` (``scales``); the other fields unchanged."""
-    from ..physics import axisymmetric as ax
-
-    stresses = ax.STRESS + ax.INVARIANTS
-    return {n: v * scale if n in stresses else v * dpdz_scale if n == "dpdz" else v for n, v in values.items()}
+    return Case(a=a, mu=lambda: _f(p, "mu"), delta=lambda: profile.depth(a), **{
+        "p_m/E*": lambda: mean_pressure(a, profile), "E*": lambda: e_star(p),
+        "F_N/E*": lambda: profile.normal_force(a)})
 
 
 #: the variables of the normal contact alone (dims: the load, not the tangential parameters)
@@ -262,7 +293,7 @@ def contact(names, p: Mapping[str, Any], profile: Profile, physical: bool) -> tu
     if not physical:
         a = np.float64(1.0)
     elif "normal_force" in p:
-        a = radius_at_force(profile, _f(p, "normal_force") / effective_modulus(p))
+        a = radius_at_force(profile, _f(p, "normal_force") / e_star(p))
     else:
         a = ax.contact_radius(profile, _f(p, "delta"))
     out: dict[str, np.ndarray] = {}
@@ -271,10 +302,9 @@ def contact(names, p: Mapping[str, Any], profile: Profile, physical: bool) -> tu
     if "delta" in names:
         out["delta"] = profile.depth(a)
     if "mean_pressure" in names:
-        pm = ax.mean_pressure(a, profile)          # p_m / E*
-        out["mean_pressure"] = pm * effective_modulus(p) if physical else pm
+        out["mean_pressure"] = ax.mean_pressure(a, profile)          # p_m / E*: its scale is E*
     if "normal_force" in names:
-        out["normal_force"] = profile.normal_force(a) * effective_modulus(p)
+        out["normal_force"] = profile.normal_force(a) * e_star(p)
     return a, out
 
 
@@ -308,7 +338,7 @@ def tangential_load(names, p: Mapping[str, Any], profile: Profile, physical: boo
 def _normal_force(p, profile, a) -> np.ndarray:
     """F_N (physical): as given, else of the contact radius (A4); the given one exactly, so that
     tangential_force = mu * normal_force is gross slip (fx = 1) without rounding."""
-    return _f(p, "normal_force") if "normal_force" in p else profile.normal_force(a) * effective_modulus(p)
+    return _f(p, "normal_force") if "normal_force" in p else profile.normal_force(a) * e_star(p)
 
 
 def _ratio_of_force(p, profile, a) -> tuple[np.ndarray, np.ndarray]:
@@ -331,8 +361,9 @@ def surface_point(p: Mapping[str, Any], physical: bool, a, keys: tuple[str, ...]
     return tuple(_f(p, k) * length if k in p else None for k in keys)
 
 
-def _evaluate(kind: str | None):
-    """An evaluate(names, params, options) for one profile kind (None: the recipe's `profile`)."""
+def _evaluate(kind: str | None, declared: Mapping[str, Variable]):
+    """An evaluate(names, params, options) for one profile kind (None: the recipe's `profile`) and the
+    scenario's variables ``declared`` (name -> Variable: their scales)."""
 
     def evaluate(names, p, options):
         from ..physics import axisymmetric as ax
@@ -340,60 +371,40 @@ def _evaluate(kind: str | None):
         physical = options["physical"]
         profile = make_profile(kind or p["profile"], p, physical)
         a, out = contact(names, p, profile, physical)
+        case = case_of(p, profile, a)
         if set(names) <= set(CONTACT):      # their group's block carries no tangential parameter
-            return out
+            return apply_scales(out, declared, case, physical)
         ux0, stick, loads = tangential_load(names, p, profile, physical, a)
         out.update(loads)
         p = {**p, "ux0": ux0}
         local = [n for n in names if n in ax.FIELDS]
-        if not local and not any(n in ax.PEAKS for n in names):
-            return out
-        scale, dpdz_scale = scales(p, physical, a, profile)
         if any(n in ax.PEAKS for n in names):
-            out.update(peak_values(names, p, options, profile, a, scale, physical))
-        if not local:
-            return out
-        values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=_f(p, "nu"),
-                              mu=_f(p, "mu"), ux0=_f(p, "ux0"), stick=stick, method=options["method"],
-                              rtol=options["rtol"])
-        values = scaled(values, scale, dpdz_scale)
-        if "stick_radius" in values and not physical:
-            values["stick_radius"] = values["stick_radius"] / a
-        out.update(values)
-        out.update(displacement_units(values, profile, a, physical))
-        return out
+            out.update(peak_values(names, p, options, profile, a))
+        if local:
+            # per unit E* (the kernels' own unit): the scales follow
+            values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a,
+                                  nu=_f(p, "nu"), mu=_f(p, "mu"), ux0=_f(p, "ux0"), stick=stick,
+                                  method=options["method"], rtol=options["rtol"])
+            out.update(values)
+        return apply_scales(out, declared, case, physical)
 
     return evaluate
 
 
-def displacement_units(values: dict, profile: Profile, a, physical: bool) -> dict:
-    """The displacements of ``values`` (per delta) in metres in physical mode, unchanged normalised."""
-    delta = profile.depth(a) if physical else 1.0
-    return {n: values[n] * delta for n in ("u_x", "u_y", "u_z") if n in values}
-
-
-def peak_values(names, p, options, profile, a, scale, physical) -> dict:
-    """The requested peak variables: ``physics.axisymmetric.peaks`` per case, stresses times the
-    stress scale, positions divided by a (normalised) or in metres (physical)."""
+def peak_values(names, p, options, profile, a) -> dict:
+    """The requested peak variables: ``physics.axisymmetric.peaks`` per case, in the physics' units
+    (stresses per E*, positions in the profile's length unit; their scales follow)."""
     from ..physics import axisymmetric as ax
 
     found = ax.peaks(profile, a=a, nu=_f(p, "nu"), mu=_f(p, "mu"), ux0=_f(p, "ux0"), method=options["method"],
                      rtol=options["rtol"])
-    length = 1.0 if physical else a
-    out = {}
-    for n in (n for n in names if n in ax.PEAKS):
-        if n == "peak_validity":
-            out[n] = found[n]
-        elif n.endswith(("_r", "_depth")):
-            out[n] = found[n] / length
-        else:
-            out[n] = found[n] * scale
-    return out
+    return {n: found[n] for n in names if n in ax.PEAKS}
 
 
-def check_profile(values, physical, method):
-    """User messages for the profile parameters and for a method the profile has no route for.  Only a
-    tabulated profile or method 'closed' import the physics (a plain recipe is checked without it)."""
+def check_profile(values, physical):
+    """User messages for the profile parameters (a method the profile has no route for is the route
+    table's to refuse: ``Scenario.route_problems``).  Only a tabulated profile imports the physics (a
+    plain recipe is checked without it)."""
     problems = []
     kind = values.get("profile")
     if kind == "tabulated" and "profile_r" in values and "profile_f" in values:
@@ -436,41 +447,17 @@ def check_profile(values, physical, method):
     if kind == "flat_punch" and "normal_force" in values and swept:
         problems.append(f"{', '.join(swept)} cannot be swept for profile = 'flat_punch' with normal_force: the depth "
                         "F_N/(2 E* radius) scales every field; give one value")
-    if method == "closed" and kind is not None:
-        from ..physics.axisymmetric.routes import has_closed_form
-
-        if not has_closed_form(kind, values.get("n")):
-            problems.append(f"method.method = 'closed' has no closed form for profile = {kind!r}; "
-                            "use 'auto' or 'quadrature'")
     return problems
-
-
-def _tangential(values) -> bool:
-    """Whether a Cattaneo–Mindlin load acts: mu > 0 and a tangential displacement, force or history."""
-    return bool(np.any(np.asarray(values.get("mu", 0.0)) > 0.0)
-                and any(np.any(np.abs(np.asarray(values.get(k, 0.0), dtype=float)) > 0.0)
-                        for k in ("ux0", "fx", "tangential_force", "ux0_history")))
 
 
 def check_depth(kind: str | None = None):
     """The check of a scenario with the depth z (``kind`` its profile kind; None: the recipe's
-    `profile`, with ``check_profile``): ``closed`` below the surface only where the interior has closed
-    forms."""
+    `profile`, with ``check_profile``); ``options`` the recipe's [method] table (its routes are
+    checked by ``Scenario.route_problems``)."""
 
-    def check(values, physical, method):
-        problems = check_profile(values, physical, method) if kind is None else []
-        problems += check_load(kind, values, physical)
-        if method != "closed" or not np.any(np.asarray(values.get("z", 0.0), dtype=float) > 0.0):
-            return problems
-        from ..physics.axisymmetric.routes import has_closed_form, has_interior_closed_form
-
-        which = kind or values.get("profile", PROFILE.default)
-        if (has_closed_form(which, values.get("n"))
-                and not has_interior_closed_form(which, values.get("n"), tangential=_tangential(values))):
-            problems.append(f"method.method = 'closed' has no closed form below the surface (z > 0) for "
-                            f"{'profile = ' + repr(which) if kind is None else 'the ' + which}; use 'auto' or "
-                            "'quadrature', or z = 0")
-        return problems
+    def check(values, physical, options):
+        problems = check_profile(values, physical) if kind is None else []
+        return problems + check_load(kind, values, physical)
 
     return check
 
@@ -480,7 +467,7 @@ def _radii_of_force(values, profile, end: float) -> tuple[list[float], str | Non
     largest force pushes the contact beyond the table."""
     from ..physics.axisymmetric.profiles import radius_at_force
 
-    e_star = np.atleast_1d(values["E"])[:, None] / (1.0 - np.atleast_1d(values["nu"])[None, :] ** 2)
+    e_star = effective_modulus(np.atleast_1d(values["E"])[:, None], np.atleast_1d(values["nu"])[None, :])
     with np.errstate(over="ignore"):     # a force beyond the table by 1e300 is refused below, as any beyond it
         forces = np.unique(np.atleast_1d(values["normal_force"])[:, None] / e_star.ravel()[None, :])
     reach = float(profile.normal_force(end))
@@ -504,8 +491,8 @@ def _tabulated_floor(profile, values) -> str | None:
     if control not in values:
         return None
     nu = np.atleast_1d(values.get("nu", NU.default))
-    e_low = float(np.min(values["E"])) / (1.0 - float(np.min(nu)) ** 2)
-    e_high = float(np.max(values["E"])) / (1.0 - float(np.max(nu)) ** 2)
+    e_low = effective_modulus(float(np.min(values["E"])), float(np.min(nu)))
+    e_high = effective_modulus(float(np.max(values["E"])), float(np.max(nu)))
     tiny, top = LOAD_RANGE[0], float(profile.max_radius)
 
     def below(a):
@@ -614,8 +601,8 @@ def load_range_problems(kind: str, values) -> list[str]:
     if control not in values or "E" not in values:
         return []
     loads = np.asarray(values[control], dtype=float)
-    e_star = [float(np.min(values["E"])) / (1.0 - float(np.min(values.get("nu", NU.default))) ** 2),
-              float(np.max(values["E"])) / (1.0 - float(np.max(values.get("nu", NU.default))) ** 2)]
+    e_star = [effective_modulus(float(np.min(values["E"])), float(np.min(values.get("nu", NU.default)))),
+              effective_modulus(float(np.max(values["E"])), float(np.max(values.get("nu", NU.default))))]
     lo, hi = (math.log(v) for v in LOAD_RANGE)
     if not all(lo <= math.log(e) <= hi for e in e_star if e > 0.0):
         return [f"E = {float(np.min(values['E'])):.6g} Pa gives E* = E/(1-nu^2) = {min(e_star):.6g} Pa, outside "
@@ -658,7 +645,7 @@ def _force_limit(kind: str, values, mu: float) -> list[str]:
     """tangential_force <= mu F_N at every point of the sweep: against the least mu F_N (F_N grows with
     delta or normal_force, with E and with nu)."""
     force = float(np.max(values["tangential_force"]))
-    e_star = float(np.min(values["E"])) / (1.0 - float(np.min(values["nu"])) ** 2)
+    least_modulus = effective_modulus(float(np.min(values["E"])), float(np.min(values["nu"])))
     if "normal_force" in values:
         least = float(np.min(values["normal_force"]))
     else:
@@ -667,7 +654,7 @@ def _force_limit(kind: str, values, mu: float) -> list[str]:
         delta = float(np.min(values["delta"]))
         profile = make_profile(kind, {**values, "delta": delta}, True)
         try:
-            least = float(profile.normal_force(contact_radius(profile, delta))) * e_star
+            least = float(profile.normal_force(contact_radius(profile, delta))) * least_modulus
         except ValueError:          # beyond a tabulated profile: check_profile says so
             return []
     limit = mu * least
@@ -706,26 +693,19 @@ def _tensile(profile, radii, physical) -> list[str]:
 
 
 def route_of(kind: str | None = None, default: str = PROFILE.default):
-    """The scenario's route(values, method, rtol) -> (route, accuracy): ``physics.axisymmetric.resolve``
-    for the profile ``kind`` (None: the recipe's `profile`, else ``default``)."""
+    """The scenario's route(values, method, rtol, groups) -> {group: (route, accuracy)}:
+    ``physics.axisymmetric.resolve`` for the profile ``kind`` (None: the recipe's `profile`, else
+    ``default``), the recipe's depths and whether a tangential load acts."""
 
-    def route(values, method, rtol):
-        from ..physics import axisymmetric as ax
+    def route(values, method, rtol, groups):
+        from ..physics.axisymmetric.routes import resolve
 
         which = kind or values.get("profile", default)
-        z, n = values.get("z"), values.get("n")
         tangential = bool(np.any(np.asarray(values.get("mu", 0.0)) > 0.0)
                           and any(np.any(np.asarray(values.get(k, 0.0)) > 0.0)
                                   for k in ("ux0", "fx", "tangential_force")))
-        floor = ax.tangential_floor(which, n) if tangential else ax.INTERIOR_RTOL
-        if z is not None and np.any(np.asarray(z, dtype=float) > 0.0) and rtol < floor \
-                and ax.resolve_interior(which, method, floor, n, tangential=tangential).kernel != "closed":
-            from ..recipe import RecipeError     # the check does not see rtol; recipe imports this module
-            load = " under tangential load" if floor > ax.INTERIOR_RTOL else ""
-            raise RecipeError([f"method.rtol = {rtol:g} is below {floor:g}, the smallest the superposition "
-                               f"below the surface (z > 0) reaches{load} for {which!r}; use rtol >= {floor:g}, "
-                               "or z = 0"])
-        return ax.resolve_depth(which, method, rtol, n, z, tangential=tangential)
+        return {g: tuple(resolve(which, method, rtol, values.get("n"), group=g, z=values.get("z"),
+                                 tangential=tangential)) for g in groups}
 
     return route
 
@@ -750,22 +730,20 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
             Variable(f"{name}_peak", f"largest {what} in the half-space z >= 0", units_physical="Pa",
                      scale=PM, dims=case, comment=_SEARCH, label=f"peak {name}"),
             Variable(f"{name}_peak_r", f"x coordinate (on the load axis y = 0; the radius r >= 0 under normal "
-                     f"load) of the largest {what}", units_physical="m", scale="the contact radius a",
+                     f"load) of the largest {what}", units_physical="m", scale=RADIUS_A,
                      dims=case, comment=_SEARCH, label=f"x of peak {name}"),
             Variable(f"{name}_peak_depth", f"depth z below the surface of the largest {what}",
-                     units_physical="m", scale="the contact radius a", dims=case, comment=_SEARCH,
+                     units_physical="m", scale=RADIUS_A, dims=case, comment=_SEARCH,
                      label=f"z of peak {name}"),
         ]
     out.append(Variable(
         "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
-        flag_values=(0, 1, 2, 4),
-        flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                       "undefined_direction_dependent_limit", "search_not_converged"),
-        comment="0: the peaks are within the stated accuracy; 1: the field is unbounded at a surface singular "
-                "point (e.g. cone tip, flat-punch edge): the peaks are +inf there, depth 0; 2: the field is NaN at "
-                "a surface singular point (a direction-dependent limit): the peaks are NaN; 4: the refinement "
-                "did not converge or ended on the border of the search box (|x| = 2a, z = 3a): the values are "
-                "the best found, not the peaks. Written whenever a peak variable is.",
+        **declare(PEAK_CODES, where={
+            V.unbounded_at_singular_point: "at a surface singular point, e.g. cone tip, flat-punch edge: the peaks "
+                                           "are +inf there, depth 0",
+            V.undefined_direction_dependent_limit: "at a surface singular point: the peaks are NaN",
+            V.search_not_converged: "its box: |x| = 2a, z = 3a"},
+            note="Written whenever a peak variable is."),
         always=tuple(v.name for v in out), label="validity of the peaks"))
     return tuple(out)
 
@@ -773,10 +751,10 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
 def _scenario(name, summary, geometry, kind):
     params = (NU, MU, UX0, FX, TANGENTIAL_FORCE, E, DELTA, NORMAL_FORCE) + geometry + (Z, Y, X)
     case = tuple(p.name for p in params if p.name not in DEPTH)
+    declared = grouped(variables(case, tuple(p.name for p in geometry), DEPTH) + peak_variables(case))
     return Scenario(
         name=name, summary=summary, references=REFERENCE, theory="axisymmetric", parameters=params,
-        variables=variables(case, tuple(p.name for p in geometry), DEPTH) + peak_variables(case),
-        evaluate=_evaluate(kind),
+        variables=declared, evaluate=_evaluate(kind, {v.name: v for v in declared}),
         physical_switch="E", methods=AXISYMMETRIC_METHODS,
         default_variables=STRESS + ("von_mises",) + PRINCIPAL + ("dpdz", "stick_radius", "region"),
         check=check_depth(kind), route=route_of(kind),

@@ -11,6 +11,8 @@ from typing import Any, Callable, Collection, Mapping, Protocol, Sequence, Typed
 
 import numpy as np
 
+from .scales import Scale
+
 #: Values a parameter may take.
 FLOAT, INT, STR, ARRAY = "float", "int", "str", "float array"
 #: default size limit of ARRAY parameters (a history on 10 points: 0.17 s at 10 steps, 4.2 s at 100)
@@ -20,21 +22,6 @@ LABEL_CHARS = 40
 #: xarray's default plot label "<long_name> [<units>]" is wrapped at 30 characters: a label with its
 #: units within this fits one line (`plot_label`, checked for every declaration by the tests)
 PLOT_LABEL_CHARS = 30
-#: the symbol of each normalisation scale (a Variable's ``scale``), as a normalised variable's label
-#: says it ("stress sigma_xx / p_m"); tests/test_cf_and_docs.py checks that every scale has one
-SCALE_SYMBOLS = {
-    "the mean contact pressure p_m = F_N/(pi a^2)": "p_m",
-    "p_m/a, with p_m = F_N/(pi a^2) and a the contact radius": "(p_m/a)",
-    "the effective modulus E* = E/(1-nu^2)": "E*",
-    "the contact radius a": "a",
-    "the contact half-width a": "a",
-    "the indentation depth delta": "delta",
-    "mu F_N, the normal force times the coefficient of friction": "(mu F_N)",
-    "mu F_N delta (coefficient of friction times normal force times indentation depth)": "(mu F_N delta)",
-    "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)": "p*",
-    "p*/a, with a the contact half-width": "(p*/a)",
-    "the amplitude Delta_1 of the base wave": "Delta_1",
-}
 #: size limit of a tabulated profile's samples (profile_r, profile_f): its set-up costs
 #: O(samples log samples) and is cached per profile (physics/setup_cache.py); a measured indenter
 #: profile has 1e3-1e4 samples
@@ -62,9 +49,12 @@ class Evaluate(Protocol):
 
 
 class Route(Protocol):
-    """route(values, method, rtol) -> (the method used, its accuracy), said in every field's attributes."""
+    """route(values, method, rtol, groups) -> {group: (the method used, its accuracy)}: the family's
+    route table (``physics.<family>.routes.resolve``) for each group of variables, said in the
+    attributes of that group's variables; ValueError where the method has no route."""
 
-    def __call__(self, values: Mapping[str, Any], method: str, rtol: float) -> tuple[str, str]: ...
+    def __call__(self, values: Mapping[str, Any], method: str, rtol: float,
+                 groups: Sequence[str]) -> dict[str, tuple[str, str]]: ...
 
 
 @dataclass(frozen=True)
@@ -200,18 +190,21 @@ class Variable:
     """One output variable.
 
     ``dims`` lists the parameters it depends on (a swept one becomes a dimension of the
-    variable); ``None`` means all of them. ``scale`` names the reference scale of a normalised
-    variable; it becomes the ``normalisation`` attribute and is said in ``description`` and, by its
-    symbol (SCALE_SYMBOLS), in the label. ``long_name`` is the full sentence (the files'
-    ``description``); ``label`` the short name of the files' ``long_name`` (`label_in`; without one
-    ``long_name`` serves, so a ``long_name`` longer than LABEL_CHARS needs a label).
+    variable); ``None`` means all of them. ``scale`` is the family's ``Scale`` of the variable (None:
+    not normalised): ``scales.apply_scales`` multiplies the physics' values by its factor, and its
+    text becomes the ``normalisation`` attribute and is said in ``description`` and, by its symbol,
+    in the label. ``group`` names the variable's route group (the key of the scenario's ``route``
+    table: which computation, closed form, quadrature or series, produced it and to what accuracy).
+    ``long_name`` is the full sentence (the files' ``description``); ``label`` the short name of the
+    files' ``long_name`` (`label_in`; without one ``long_name`` serves, so a ``long_name`` longer than
+    LABEL_CHARS needs a label).
     """
 
     name: str
     long_name: str
     units: str = "1"
     units_physical: str | None = None
-    scale: str | None = None
+    scale: Scale | None = None
     dims: tuple[str, ...] | None = None
     dtype: str = "float64"
     flag_values: tuple[int, ...] = ()
@@ -228,6 +221,8 @@ class Variable:
     #: from them (e.g. delta when normal_force is given); recipes giving none keep their list and hash
     recorded_when: tuple[str, ...] = ()
     label: str | None = None
+    #: the route group of a float variable (``Scenario.route`` gives its method and accuracy)
+    group: str = "surface"
 
     def units_in(self, physical: bool) -> str:
         return self.units_physical if (physical and self.units_physical) else self.units
@@ -235,7 +230,7 @@ class Variable:
     def long_name_in(self, physical: bool) -> str:
         """The full sentence in the mode, as said in the files' ``description``."""
         if self.scale and not physical:
-            return f"{self.long_name} divided by {self.scale}"
+            return f"{self.long_name} divided by {self.scale.text}"
         return self.long_name
 
     def label_in(self, physical: bool) -> str:
@@ -243,7 +238,7 @@ class Variable:
         normalised mode " / " and the symbol of the scale ("stress sigma_xx / p_m")."""
         text = self.label or self.long_name
         if self.scale and not physical:
-            return f"{text} / {SCALE_SYMBOLS.get(self.scale, self.scale)}"
+            return f"{text} / {self.scale.symbol}"
         return text
 
     def plot_label(self, physical: bool) -> str:
@@ -272,9 +267,12 @@ class Scenario:
                         "traction on the half-space along +x")
     methods: tuple[str, ...] = ("auto",)
     default_variables: tuple[str, ...] | None = None
-    #: extra checks across parameters: check(values, physical, method) -> list of messages
+    #: extra checks across parameters: check(values, physical, options) -> list of messages, with
+    #: options the recipe's [method] table ({"method": ..., "rtol": ...}); a method without a route is
+    #: refused by `route_problems`, in the route table's words
     check: Callable[..., list[str]] | None = None
-    #: route(values, method, rtol) -> (the method used, its accuracy), said in every field's attributes
+    #: route(values, method, rtol, groups) -> {group: (the method used, its accuracy)}, said in the
+    #: attributes of each group's variables (``Variable.group``)
     route: Route | None = None
     #: defaults that depend on other parameters: complete(values) fills them in place, before `check`
     complete: Callable[[dict], None] | None = None
@@ -296,6 +294,31 @@ class Scenario:
 
     def variable(self, name: str) -> Variable:
         return {v.name: v for v in self.variables}[name]
+
+    def routed(self, names: Collection[str]) -> tuple[str, ...]:
+        """The route groups of the float variables among ``names`` (flags and integers have none), in
+        declaration order."""
+        wanted = set(names)
+        return tuple(dict.fromkeys(v.group for v in self.variables if v.name in wanted and not v.flag_values
+                                   and v.dtype.startswith("float")))
+
+    def routes(self, values: Mapping[str, Any], method: str, rtol: float,
+               names: Collection[str]) -> dict[str, tuple[str, str]]:
+        """{group: (route, accuracy)} of the float variables among ``names`` (``route``; {} without one)."""
+        groups = self.routed(names)
+        if self.route is None or not groups:
+            return {}
+        return self.route(values, method, rtol, groups)
+
+    def route_problems(self, values: Mapping[str, Any], options: Mapping[str, Any],
+                       names: Collection[str]) -> list[str]:
+        """The route table's refusal of the recipe's method for the variables ``names``, as the one
+        message of a recipe check ("method." and the table's words), or []."""
+        try:
+            self.routes(values, options["method"], options["rtol"], names)
+        except ValueError as exc:
+            return [f"method.{exc}"]
+        return []
 
     def variables_in(self, physical: bool) -> tuple[Variable, ...]:
         mode = "physical" if physical else "normalised"

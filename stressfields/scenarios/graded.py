@@ -17,8 +17,12 @@ scenario), and the route table is ``physics.graded.resolve``.  The functions tha
 """
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 
+from ..physics.flags import Validity as V
+from ..physics.flags import declare
 from ..physics.names import GRADED_METHODS
 from .base import ARRAY, MAX_TABLE_SIZE, STR, Parameter, Scenario, Variable, table_step_problem
 
@@ -69,8 +73,8 @@ MATERIAL = (E0, C0, NU, K)
 #: below the surface (docs/theory/graded.md section 10): solved for k = 0 (any nu) and for k > 0 with
 #: nu = 1/(2+k), which `poisson = "holl_ratio"` sets
 Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface); given, the "
-              "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k) (the "
-              "paraboloid at k > 0)", low=0.0, high=1e6, label="depth z / a", axis="Z")
+              "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k), for the "
+              "power-law profiles (parabolic, conical, power_law)", low=0.0, high=1e6, label="depth z / a", axis="Z")
 # no default: a recipe without it is recorded (and hashed) as before the choice existed
 POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu; also when omitted) or 'holl_ratio' "
                       "(nu = 1/(2+k), following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
@@ -82,6 +86,11 @@ STRESS_NAMES = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz", "von_mises", "si
                 "tau_max")
 _AT = "at (r, z) on a plane through the axis, r = rho a, depth z a (z = 0: the surface)"
 #: the short labels (files' long_name) of the stress variables below the surface
+#: the codes of the surface fields' validity, of the stresses', of the peaks' and at pull-off (physics.flags)
+SURFACE_CODES = (V.within_stated_accuracy, V.unbounded_at_singular_point, V.undefined_direction_dependent_limit)
+STRESS_CODES = SURFACE_CODES + (V.not_resolved_below_the_surface,)
+PEAK_CODES = SURFACE_CODES + (V.search_not_converged,)
+CRITICAL_CODES = (V.within_stated_accuracy, V.no_critical_point)
 STRESS_LABELS = {"sigma_1": "sigma_1 (largest)", "sigma_2": "sigma_2 (middle)", "sigma_3": "sigma_3 (smallest)",
                  "tau_max": "shear stress tau_max", "von_mises": "von Mises stress",
                  **{f"sigma_{c}": f"stress sigma_{c}" for c in ("rr", "tt", "zz", "rz", "xx", "yy", "xz")}}
@@ -100,13 +109,10 @@ def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, .
                           comment="tension positive, z into the body; docs/theory/graded.md section 10")
                  for n, m in what) + (
         Variable("stress_validity", "validity of the stress variables at the point", dims=dims, dtype="int8",
-                 flag_values=(0, 1, 2, 3), always=True,
-                 flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                                "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
-                 comment=f"1: a value is +-inf where the exact field is unbounded ({edge}the conical tip r = 0 at "
-                         "z = 0 and k = 0, where the pressure is unbounded); 2: a value is NaN where the limit "
-                         "depends on the direction of approach; 3: a NaN below the surface, at a point the "
-                         "quadrature does not resolve. Only the stress variables in this file are considered.",
+                 always=True, **declare(STRESS_CODES, where={
+                     V.unbounded_at_singular_point: f"{edge}the centre r = 0 at z = 0 where the pressure is "
+                                                    "unbounded: the cone at k = 0, a power law with n + k <= 1"},
+                     note="Only the stress variables in this file are considered."),
                  label="validity of the stresses"),
     )
 
@@ -118,25 +124,35 @@ _SEARCH = ("Found by the search of physics.axisymmetric.peaks on the graded fiel
            "adhesive edge, the conical tip at k = 0) the peak is +inf there, depth 0, and peak_validity is 1.")
 
 
-def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
-    """The per-case peaks of tau_max and von Mises in the half-space and where they sit."""
+_SEARCH_T = ("Found by the search of physics.axisymmetric.peaks on the field of the lower body at k = 0 "
+             "(physics.graded.interior.tangential_peaks: c_N* of the pair times the axisymmetric family's peaks): "
+             "the surface singular points x = 0, +-c, +-a first, a grid over x in [-2, 2] and depths 0 and 1e-3 a "
+             "to 3a, a bounded Nelder-Mead refinement to 1e-9 a; the value is the field at the refined point, the "
+             "position accurate to about 1e-7 a. Where the field is unbounded at a surface singular point (the "
+             "conical tip) the peak is +inf there, depth 0, and peak_validity is 1.")
+
+
+def peak_variables(case: tuple[str, ...], position: str = "rho") -> tuple[Variable, ...]:
+    """The per-case peaks of tau_max and von Mises in the half-space and where they sit: ``position`` "rho"
+    (the radius r/a) or "x" (x/a signed along the tangential load, graded_tangential)."""
     out = []
+    search = _SEARCH if position == "rho" else _SEARCH_T
+    where = "radius r/a" if position == "rho" else "coordinate x/a (signed, along the tangential load)"
     for name, what in (("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"),
                        ("von_mises", "von Mises equivalent stress sqrt(3 J2)")):
         out += [Variable(f"{name}_peak", f"largest {what} in the half-space z >= 0", units="Pa", dims=case,
-                         comment=_SEARCH, label=f"peak {name}"),
-                Variable(f"{name}_peak_rho", f"radius r/a of the largest {what}", dims=case, comment=_SEARCH,
-                         label=f"r/a of peak {name}"),
-                Variable(f"{name}_peak_depth", f"depth z/a of the largest {what}", dims=case, comment=_SEARCH,
+                         comment=search, label=f"peak {name}"),
+                Variable(f"{name}_peak_{position}", f"{where} of the largest {what}", dims=case, comment=search,
+                         label=f"{'r' if position == 'rho' else 'x'}/a of peak {name}"),
+                Variable(f"{name}_peak_depth", f"depth z/a of the largest {what}", dims=case, comment=search,
                          label=f"z/a of peak {name}")]
     out.append(Variable(
         "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
-        flag_values=(0, 1, 2, 4), flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                                                 "undefined_direction_dependent_limit", "search_not_converged"),
-        comment="0: the peaks are within the stated accuracy; 1: unbounded at a surface singular point (+inf "
-                "there, depth 0); 2: NaN at a surface singular point; 4: the refinement did not converge or "
-                "ended on the border of the search box (rho = 2 or z = 3a): the best found, not the peaks. "
-                "Written whenever a peak variable is.", always=tuple(v.name for v in out),
+        always=tuple(v.name for v in out), **declare(PEAK_CODES, where={
+            V.unbounded_at_singular_point: "at a surface singular point: +inf there, depth 0",
+            V.undefined_direction_dependent_limit: "at a surface singular point",
+            V.search_not_converged: f"its box: {'rho = 2' if position == 'rho' else '|x| = 2'}, z = 3a"},
+            note="Written whenever a peak variable is."),
         label="validity of the peaks"))
     return tuple(out)
 
@@ -200,8 +216,6 @@ GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dim
 
 #: the methods of the route table (physics.graded.routes.METHODS, one definition in physics.names)
 METHODS = GRADED_METHODS
-VALIDITY = dict(dtype="int8", flag_values=(0, 1, 2), always=True,
-                flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point", "undefined_at_singular_point"))
 
 
 def _f(p, key):
@@ -238,8 +252,9 @@ def _fields(entry, known, names, p, options, **values):
     return entry(wanted, _indenter(p), **values, method=options["method"], rtol=options["rtol"])
 
 
-def _check_profile(values, method):
-    """Cross-parameter rules shared by the three scenarios; messages name key, value and range."""
+def _check_profile(values):
+    """Cross-parameter rules shared by the three scenarios; messages name key, value and range (a method
+    without a route, e.g. ``closed`` on a tabulated profile, is the route table's to refuse)."""
     problems = []
     kind = values.get("profile")
     if kind == "tabulated":
@@ -261,13 +276,6 @@ def _check_profile(values, method):
         if a_max > r[-1]:
             problems.append(f"contact_radius = {a_max!r} m exceeds the tabulated range: it must be in "
                             f"(0, {float(r[-1])!r}] (the last profile_r); extend the table")
-        if method == "closed":
-            problems.append("method.method = 'closed' has no closed form for profile = 'tabulated'; "
-                            "use 'auto' or 'quadrature'")
-    if kind == "power_law" and method == "quadrature" and np.min(values["n"]) < 1.0:
-        # the transform quadrature (eq. 5) does not converge for a tip with unbounded slope f' ~ r^(n-1)
-        problems.append(f"n = {float(np.min(values['n']))!r} with method.method = 'quadrature': the quadrature "
-                        "route needs n in [1, 50] (a tip of finite slope); use method 'auto' for n < 1")
     return problems
 
 
@@ -290,11 +298,14 @@ def _grid(values, names):
     return out
 
 
-def _validity(field_dims, fields, comment):
+def _validity(field_dims, fields, unbounded):
     """The validity flag of ``fields``: evaluated from them whether or not the file holds them, so that
-    it is the same requested alone, beside them, or beside other variables."""
-    return Variable("validity", f"validity of {' and '.join(fields)}", dims=field_dims, **VALIDITY,
-                    comment=f"{comment}. It flags {' and '.join(fields)}, evaluated whether or not the file holds them",
+    it is the same requested alone, beside them, or beside other variables; ``unbounded`` says where
+    they are +-inf."""
+    return Variable("validity", f"validity of {' and '.join(fields)}", dims=field_dims, dtype="int8", always=True,
+                    **declare(SURFACE_CODES, where={V.unbounded_at_singular_point: unbounded},
+                              note=f"It flags {' and '.join(fields)}, evaluated whether or not the file holds "
+                                   "them."),
                     label=f"validity of {' and '.join(fields)}")
 
 
@@ -320,9 +331,20 @@ N_VARS = (
              label="contact pressure p(r; a)"),
     Variable("uz", "normal surface displacement u_z(r; a), positive into the body", units="m",
              dims=("k", "contact_radius") + GEOM + ("rho",), label="displacement u_z(r; a)"),
-    _validity(N_DIMS + ("rho",), N_FLAGGED, "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
+    _validity(N_DIMS + ("rho",), N_FLAGGED, "pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
               "cone at k = 0), where the exact pressure is unbounded"),
 ) + stress_variables(N_DIMS + ("z", "rho"), adhesive=False) + peak_variables(N_DIMS)
+
+
+def _grouped(declared) -> tuple[Variable, ...]:
+    """The declarations, the stress below the surface and its peaks in the route table's "stress" group
+    (``physics.graded.resolve``), the rest in its "surface" group."""
+    return tuple(dataclasses.replace(v, group="stress") if not v.flag_values and (
+        v.name.startswith("sigma_") or v.name in ("von_mises", "tau_max") or "_peak" in v.name) else v
+        for v in declared)
+
+
+N_VARS = _grouped(N_VARS)
 
 
 def _evaluate_normal(names, p, options):
@@ -337,19 +359,18 @@ def _evaluate_normal(names, p, options):
     return out
 
 
-def _check_normal(values, physical, method):
-    return _check_profile(values, method) + _depth_problems(values)
+def _check_normal(values, physical, options):
+    return _check_profile(values) + _depth_problems(values)
 
 
-def route(values, method, rtol):
-    """Closed forms of the paper for power-law profiles; the MDR quadrature for tabulated ones."""
+def route(values, method, rtol, groups):
+    """``physics.graded.resolve`` for each group: closed forms of the paper for power-law profiles, the
+    MDR quadrature for tabulated ones; the stress group below the surface where the recipe gives z."""
     from ..physics import graded as gp
 
-    surface = gp.resolve(values.get("profile", PROFILE.default), method, rtol)
-    if values.get("z") is None:
-        return surface
-    below = gp.routes.resolve_interior(values.get("k", K.default), rtol)
-    return f"{surface[0]}; below the surface: {below[0]}", f"{surface[1]}; below the surface: {below[1]}"
+    k = values.get("k", K.default) if values.get("z") is not None else None
+    return {g: gp.resolve(values.get("profile", PROFILE.default), method, rtol, group=g, k=k, n=values.get("n"))
+            for g in groups}
 
 
 CONVENTIONS = ("pressure p positive in compression; surface displacement u_z and indentation depth d positive "
@@ -387,12 +408,13 @@ AD_VARS = (
              label="pull-off depth d_c"),
     Variable("critical_force", "normal force F_c at pull-off (negative: tensile)", units="N", dims=CRIT_DIMS,
              label="pull-off force F_c"),
-    _validity(AD_DIMS + ("rho",), ("pressure",), "1: pressure = -inf at r = a (the adhesive edge singularity, "
+    _validity(AD_DIMS + ("rho",), ("pressure",), "pressure = -inf at r = a (the adhesive edge singularity, "
               "eq. 37) or +inf at r = 0 for a profile with n + k <= 1, where the exact pressure is unbounded"),
     Variable("critical_validity", "validity of the critical (pull-off) values", dims=CRIT_DIMS, dtype="int8",
-             flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
-             comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
-                     "tabulated profile; the critical values are NaN there", label="validity at pull-off"),
+             always=True, **declare(CRITICAL_CODES, where={
+                 V.no_critical_point: "power law with n <= (1-k)/2, Table 3, or a critical point beyond the "
+                                      "tabulated profile"}),
+             label="validity at pull-off"),
 ) + stress_variables(AD_DIMS + ("z", "rho"), adhesive=True) + peak_variables(AD_DIMS)
 
 
@@ -408,7 +430,8 @@ def _evaluate_adhesive(names, p, options):
     out.update(_stress(names, p, options, delta_gamma=_f(p, "delta_gamma")))
     out.update(_peaks(names, p, options, delta_gamma=_f(p, "delta_gamma")))
     if "critical_validity" in names:
-        out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
+        out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(V.no_critical_point),
+                                            np.int8(V.within_stated_accuracy))
     if "validity" in names:
         out["validity"] = _flag(gp.adhesive_fields, gp.fields.ADHESIVE, ("pressure",), out, p, options, **values)
     return out
@@ -419,7 +442,7 @@ GRADED_ADHESIVE = Scenario(
     summary="Adhesive (JKR-type) contact of a rigid axisymmetric indenter and a power-law graded half-space: "
             "depth, force, pressure and the pull-off point at fixed load and fixed grips (MDR)",
     references=REFERENCE, theory="graded", parameters=GEOMETRY + MATERIAL_N + (DGAM, CONTROL, A_RAD, Z, R_REL),
-    variables=AD_VARS,
+    variables=_grouped(AD_VARS),
     evaluate=_evaluate_adhesive, methods=METHODS, check=_check_normal, conventions=CONVENTIONS, route=route,
     renamed=RENAMED,
     default_variables=("depth", "normal_force", "pressure", "critical_radius", "critical_depth", "critical_force"),
@@ -477,7 +500,7 @@ T_VARS = (
              comment="0: identical bodies, or nu = 1/(2+k) for every elastic body (sec. 5): the MDR solution is "
                      "exact; 1: the coupling is neglected (only with uncoupled_approximation = 'flag')",
                      label="normal-tangential coupling"),
-    _validity(T_FIELD, ("shear_traction",), "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
+    _validity(T_FIELD, ("shear_traction",), "shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
               "with n + k <= 1; under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) "
               "and flagged 0"),
 ) + tuple(
@@ -491,14 +514,12 @@ T_VARS = (
                  ("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"))
 ) + (
     Variable("stress_validity", "validity of the stress variables at the point", dims=T_DEEP, dtype="int8",
-             flag_values=(0, 1, 2, 3), always=True,
-             flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                            "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
-             comment="the codes of the axisymmetric family's validity: 1 +-inf where the exact field is unbounded "
-                     "(the conical tip r = 0 at z = 0), 2 NaN where the limit depends on the direction (the tip "
-                     "in gross slip), 3 NaN below the surface at a point the 1-D routes do not resolve",
+             always=True, **declare(STRESS_CODES, where={
+                 V.unbounded_at_singular_point: "the conical tip r = 0 at z = 0",
+                 V.undefined_direction_dependent_limit: "the tip in gross slip",
+                 V.not_resolved_below_the_surface: "the 1-D routes of the axisymmetric family"}),
              label="validity of the stresses"),
-)
+) + peak_variables(PAIR + ("c0", "mu", "contact_radius") + GEOM + ("fx",), position="x")
 
 
 def _pair(p):
@@ -523,6 +544,7 @@ def _evaluate_tangential(names, p, options):
                   nu=nu, E0=e0, E0_2=e2, nu_2=nu2, require_decoupled=p["uncoupled_approximation"] == "reject")
     out = _fields(gp.tangential_fields, gp.fields.TANGENTIAL, names, p, options, **values)
     out.update(_tangential_stress(names, p, options, values))
+    out.update(_tangential_peaks(names, p, options, values))
     if "coupling" in names:
         ok = gp.tangential_decoupled(k, nu, E0=e0, E0_2=e2, nu_2=nu2)
         out["coupling"] = np.where(ok, np.int8(0), np.int8(1))
@@ -551,13 +573,28 @@ def _tangential_stress(names, p, options, values) -> dict:
     return got
 
 
-def _check_tangential(values, physical, method):
-    problems = _check_profile(values, method)
-    if (values.get("z") is not None or values.get("x") is not None) and np.any(np.asarray(values.get("k")) > 0.0):
-        problems.append(f"z or x is given with k = {float(np.max(values['k']))!r}: below the surface under tangential "
+def _tangential_peaks(names, p, options, values) -> dict:
+    """The requested peaks of the lower body (k = 0)."""
+    from ..physics.graded.interior import TANGENTIAL_PEAKS, tangential_peaks
+
+    if not any(n in TANGENTIAL_PEAKS for n in names):
+        return {}
+    found = tangential_peaks(_indenter(p), a=values["a"], fx=values["fx"], mu=values["mu"], k=values["k"],
+                             nu=values["nu"], E0=values["E0"], c0=values["c0"], E0_2=values["E0_2"],
+                             nu_2=values["nu_2"], method=options["method"], rtol=options["rtol"])
+    return {n: found[n] for n in names if n in TANGENTIAL_PEAKS}
+
+
+def _check_tangential(values, physical, options):
+    problems = _check_profile(values)
+    below = values.get("z") is not None or values.get("x") is not None
+    peaks = [n for n in getattr(values, "variables", ()) if n.endswith("_peak") or "_peak_" in n]
+    what = "z or x is given" if below else f"{peaks[0]} is asked for" if peaks else ""
+    if what and np.any(np.asarray(values.get("k")) > 0.0):
+        problems.append(f"{what} with k = {float(np.max(values['k']))!r}: below the surface under tangential "
                         "load the graded family solves k = 0")
-    elif (values.get("z") is not None or values.get("x") is not None) and values.get("profile") == "tabulated":
-        problems.append("z or x is given with profile = 'tabulated': below the surface under tangential load the "
+    elif what and values.get("profile") == "tabulated":
+        problems.append(f"{what} with profile = 'tabulated': below the surface under tangential load the "
                         "graded family solves the parabolic, conical and power-law profiles at k = 0")
     if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
         return problems
@@ -591,7 +628,7 @@ GRADED_TANGENTIAL = Scenario(
     references=REFERENCE, theory="graded",
     parameters=GEOMETRY + (E0, C0, POISSON, NU_T, K, BODY2, E0_2, NU_2, UNCOUPLED, MU, A_RAD, FX, DELTA_X, R_REL,
                            Z_T, X_T),
-    variables=T_VARS, evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
+    variables=_grouped(T_VARS), evaluate=_evaluate_tangential, methods=METHODS, check=_check_tangential,
     conventions=CONVENTIONS, route=route, renamed=RENAMED,
     default_variables=("stick_radius", "tangential_displacement", "max_tangential_displacement", "normal_force",
                        "shear_traction"),

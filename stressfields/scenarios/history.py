@@ -21,10 +21,11 @@ import dataclasses
 import numpy as np
 
 from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
-from .axisymmetric import (A, DELTA, DEPTH, E, MU, N, NORMAL_FORCE, NU, PROFILE_F, PROFILE_R, R, REFERENCE,
-                           THETA, X, Y, Z, check_depth, contact, displacement_units, effective_modulus, make_profile,
-                           route_of, scaled, scales, surface_point, variables)
+from .axisymmetric import (A, DELTA, DEPTH, E, MU, MU_FN, MU_FN_DELTA, N, NORMAL_FORCE, NU, PROFILE_F, PROFILE_R, R,
+                           RADIUS_A, REFERENCE, THETA, X, Y, Z, case_of, check_depth, contact, grouped, make_profile,
+                           route_of, surface_point, variables)
 from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
+from .scales import apply_scales
 
 HISTORY = Parameter("ux0_history", "tangential rigid-body displacements u_x0 divided by the indentation depth "
                     "delta, in order, starting from the unloaded state u_x0 = 0 (each step is reached "
@@ -62,23 +63,21 @@ def _history_variables() -> tuple[Variable, ...]:
     return tuple(base) + (
         Variable("stick_radius", "radius of the zone that does not slip during the move into this step (stick "
                  "radius of the current loading branch; a before any tangential displacement, 0 in gross slip)",
-                 units_physical="m", scale="the contact radius a", dims=CASE, label="stick radius c"),
+                 units_physical="m", scale=RADIUS_A, dims=CASE, label="stick radius c"),
         Variable("tangential_force", "tangential force F_x transmitted to the half-space (resultant of the shear "
                  "traction, along +x)", units_physical="N",
-                 scale="mu F_N, the normal force times the coefficient of friction", dims=CASE,
+                 scale=MU_FN, dims=CASE,
                  comment="at mu = 0 the normalised value is the limit mu -> 0+ (+-1, gross slip)",
                  label="tangential F_x"),
         Variable("dissipated_energy", "energy dissipated by friction from the unloaded start up to this step",
-                 units_physical="J", scale="mu F_N delta (coefficient of friction times normal force times "
-                 "indentation depth)", dims=CASE,
+                 units_physical="J", scale=MU_FN_DELTA, dims=CASE,
                  comment="over a closed cycle the difference equals the area of the F_x-u_x0 loop; at mu = 0 "
                          "the normalised value is the limit mu -> 0+ (the sum of |du_x0|/delta)",
                          label="W_diss"),
         Variable("cycle_energy", "energy dissipated in the hysteresis cycle that closes during the move into "
                  "this step, at its end or on the way (the area of its F_x-u_x0 loop; 0 where no cycle closes)",
                  units_physical="J",
-                 scale="mu F_N delta (coefficient of friction times normal force times indentation depth)",
-                 dims=CASE,
+                 scale=MU_FN_DELTA, dims=CASE,
                  comment="a cycle closes where u_x0 returns to the turning point that opened it (or passes the "
                          "mirror -e_1 of the only one), so that the spring state equals that of an earlier "
                          "point of the history (the latest such, with other states in between); cycle_energy "
@@ -93,6 +92,10 @@ def _history_variables() -> tuple[Variable, ...]:
     )
 
 
+VARIABLES = grouped(_history_variables())
+DECLARED = {v.name: v for v in VARIABLES}
+
+
 def evaluate(names, p, options):
     """Recipe values -> profile -> ``physics.axisymmetric.history_fields`` -> the variables' units."""
     from ..physics import axisymmetric as ax     # when computing: the declarations need only physics.names
@@ -104,37 +107,26 @@ def evaluate(names, p, options):
         history = np.asarray(p["ux0_history"], dtype=float).ravel()
         out["ux0"] = np.asarray(p["amplitude"], dtype=float) * history[np.asarray(p["step"], dtype=np.int64)]
     local = [n for n in names if n in ax.HISTORY_FIELDS]
-    if not local:
-        return out
-    scale, dpdz_scale = scales(p, physical, a, profile)
-    nu, mu = (np.asarray(p[k], dtype=float) for k in ("nu", "mu"))
-    values, _ = ax.history_fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a, nu=nu, mu=mu,
-                                  amplitude=np.asarray(p["amplitude"], dtype=float), history=p["ux0_history"],
-                                  step=p["step"], method=options["method"], rtol=options["rtol"])
-    values = scaled(values, scale, dpdz_scale)
-    if physical:       # F_x / (mu F_N) -> N, energies / (mu F_N delta) -> J
-        force = mu * profile.normal_force(a) * effective_modulus(p)
-        energy = force * profile.depth(a)
-        for n, unit in (("tangential_force", force), ("dissipated_energy", energy), ("cycle_energy", energy)):
-            if n in values:
-                values[n] = values[n] * unit
-    elif "stick_radius" in values:
-        values["stick_radius"] = values["stick_radius"] / a
-    values.update(displacement_units(values, profile, a, physical))
-    out.update(values)
-    return out
+    if local:
+        # per unit E* (the kernels' own unit): the scales follow
+        values, _ = ax.history_fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a,
+                                      nu=np.asarray(p["nu"], dtype=float), mu=np.asarray(p["mu"], dtype=float),
+                                      amplitude=np.asarray(p["amplitude"], dtype=float), history=p["ux0_history"],
+                                      step=p["step"], method=options["method"], rtol=options["rtol"])
+        out.update(values)
+    return apply_scales(out, DECLARED, case_of(p, profile, a), physical)
 
 
 _ROUTE = route_of(default=PROFILE.default)
 
 
-def _route(values, method, rtol):
+def _route(values, method, rtol, groups):
     """The route of the `axisymmetric` scenarios, under tangential load where some step moves: the
     largest |u_x0|/delta of the history stands for their `ux0` (only whether it is > 0 matters)."""
     history = np.abs(np.asarray(values.get("ux0_history", ()), dtype=float))
     moved = np.max(np.asarray(values.get("amplitude", AMPLITUDE.default), dtype=float)) * (
         float(history.max()) if history.size else 0.0)
-    return _ROUTE({**values, "ux0": moved}, method, rtol)
+    return _ROUTE({**values, "ux0": moved}, method, rtol, groups)
 
 
 def _complete(values):
@@ -148,8 +140,8 @@ def _complete(values):
         values["step"] = np.atleast_1d(np.asarray(values["step"], dtype=np.int32))
 
 
-def _check(values, physical, method):
-    problems = check_depth()({"profile": PROFILE.default, **values}, physical, method)
+def _check(values, physical, options):
+    problems = check_depth()({"profile": PROFILE.default, **values}, physical, options)
     n = len(values.get("ux0_history", ()))
     if n == 0:
         return problems
@@ -170,7 +162,7 @@ AXISYMMETRIC_HISTORY = Scenario(
     references=REFERENCE + "; R. D. Mindlin, H. Deresiewicz, Elastic spheres in contact under varying oblique "
                            "forces, J. Appl. Mech. 20 (1953) 327-344",
     parameters=PARAMETERS,
-    variables=_history_variables(),
+    variables=VARIABLES,
     evaluate=evaluate,
     physical_switch="E",
     conventions=("tension positive, z points into the body, p_h = -trace(sigma)/3, tangential traction on the "

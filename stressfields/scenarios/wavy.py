@@ -15,37 +15,62 @@ Methods: "series" is the exact series of the domain (length chosen from method.r
 n_terms / error_estimate / converged). "auto" (the default) is the same, except that for a periodic
 surface with a contact so narrow that the periodic correction to the pressure (about
 0.4 (2a/lambda_1)^2 of it, bounded per case in `periodic_correction`) plus the non-periodic series
-error stays below the tolerance, `pressure` is the cheaper non-periodic series (validity = 3).
-"approximate_eq18" / "approximate_eq20" replace `pressure`
+error stays below the tolerance, `pressure` is the cheaper non-periodic series (validity = 7,
+nonperiodic_series_within_rtol). "approximate_eq18" / "approximate_eq20" replace `pressure`
 (only) by the paper's approximate formulas, which are inaccurate: they exist so their error can be
-charted, are never the default, and are flagged validity = 2 at every point. What each method means
-is decided in one place, the physics route table (`physics/wavy/routes.py`); `evaluate` maps the
+charted, are never the default, and are flagged validity = 6 (approximate_formula) at every point.
+What each method means is decided in one place, the physics route table (`physics/wavy/routes.py`); `evaluate` maps the
 recipe onto one `physics.wavy.fields` call per domain and applies the physical scales.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from ..physics.flags import Validity as V
+from ..physics.flags import declare
 from ..physics.names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
 from .base import ARRAY, INT, STR, Options, Parameter, Scenario, Variable
+from .scales import Case, Scale, apply_scales, effective_modulus
 
 REFERENCE = ("I. Yu. Tsukanov, Partial contact of a rigid multisinusoidal wavy surface with an elastic "
              "half-plane, Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467 (pressures with "
              "the plane-strain modulus E* = E/(1-nu^2); see the errata of the theory page)")
 
-PSTAR = "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)"
+
+def pstar(q: Mapping[str, Any]):
+    """p* = pi E* Delta_1/lambda_1 of a recipe's values (physical mode), the family's pressure scale."""
+    delta_1 = np.asarray(q["amplitudes"], dtype=float)[0]
+    return effective_modulus(q["E"], q["nu"], times=math.pi) * delta_1 / q["lambda_1"]
+
+
+def half_width(q: Mapping[str, Any]):
+    """The contact half-width a = (2a/lambda_1) lambda_1/2 in metres (physical mode)."""
+    return np.asarray(q["a"], dtype=float) * q["lambda_1"] / 2.0
+
+
+# -- the family's scales: the physics returns pressures and stresses per p*, lengths per a, u_z per
+# Delta_1 (normalised mode); the block's Case (``_case``) holds p*, Delta_1 and the half-width a in
+# SI units (physical mode)
+PSTAR = Scale("p*", "p* = pi E* Delta_1/lambda_1, E* = E/(1-nu^2)",
+              lambda c, physical: c["p*"] if physical else 1.0,
+              value=pstar, definition="p* = pi E/(1-nu^2) Delta_1/lambda_1")
+DELTA_1 = Scale("Delta_1", "the amplitude Delta_1 of the base wave",
+                lambda c, physical: c["Delta_1"] if physical else 1.0,
+                value=lambda q: np.asarray(q["amplitudes"], dtype=float)[0], definition="Delta_1")
+HALF_WIDTH = Scale("a", "the contact half-width a", lambda c, physical: c["half_width"] if physical else 1.0,
+                   value=half_width, definition="a lambda_1/2")
+PER_HALF_WIDTH = Scale("(p*/a)", "p*/a, with a the contact half-width",
+                       lambda c, physical: c["p*"] / c["half_width"] if physical else 1.0)
 #: the largest wavenumber n_i a recipe may give: the periodic closed form sums n_max terms at each of
 #: ~50 n_max quadrature nodes of the continuous-contact test, and the single-indenter series is
 #: ~a n_max/2 terms long, so a periodic contact costs ~n_max^2 (measured: 300: 0.9 s, 500: 2.0 s,
 #: 1000: 6.2 s, 3000: 80 s; 1e12 would never end)
 MAX_WAVENUMBER = 500
 DOMAINS = ("periodic", "nonperiodic")
-DELTA_1 = "the amplitude Delta_1 of the base wave"
-HALF_WIDTH = "the contact half-width a"
-PER_HALF_WIDTH = "p*/a, with a the contact half-width"
 #: what a per-contact (x-independent) quantity depends on; only the swept ones become dimensions
 CASE = ("domain", "amplitudes", "wavenumbers", "n_harmonics", "E", "nu", "lambda_1", "a")
 
@@ -98,23 +123,35 @@ _INTERIOR = ("Plane strain, from the complex potential of the surface tractions 
              "(W38). The mean pressure's k = 0 mode is kept (periodic: sigma_xx = sigma_zz = -p_inf as z -> inf, the "
              "limit of the sum over all periods; (W37)). At z = 0 sigma_zz = -pressure and sigma_xz = -shear_traction "
              "exactly. Within error_estimate (p*).")
-_DISPLACEMENT = ("Single indenter only (domain = 'nonperiodic'). Plane strain, from the potential G and its closed "
-                 "primitive Psi (docs/theory/wavy.md (W45)): 2 mu_s u_x = (1 - 2 nu) Im Psi + z Re G, 2 mu_s u_z = "
-                 "-2 (1 - nu) Re Psi - z Im G (mu_s the shear modulus), plus the shear traction's terms under a "
-                 "tangential load. Datum that of uz: log kernel ln|2 pi (x - xi)/lambda_1|, so u_z at z = 0 is uz; "
-                 "u_x is odd about x = 0 under normal load (at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) times the load "
-                 "right of x less that left of it). Within about 1e-13 Delta_1 in the tests.")
+_DISPLACEMENT = ("Plane strain, from the potential G and its primitive Psi (docs/theory/wavy.md (W45)-(W48)): "
+                 "2 mu_s u_x = (1 - 2 nu) Im Psi + z Re G, 2 mu_s u_z = -2 (1 - nu) Re Psi - z Im G (mu_s the shear "
+                 "modulus), plus the shear traction's terms under a tangential load. Single indenter: the closed "
+                 "primitive in omega. Periodic: the closed primitive near the surface and its Taylor series in w at "
+                 "depth, switched where the stresses switch (W39). Datum that of uz (non-periodic: log kernel "
+                 "ln|2 pi (x - xi)/lambda_1|; periodic: ln|2 sin(pi (x - xi)/lambda_1)|), so u_z at z = 0 is uz; u_x "
+                 "is odd about x = 0 under normal load (at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) times the load right "
+                 "of x less that left of it). Periodic: the mean pressure's k = 0 mode (sigma_xx = sigma_zz = -p_inf "
+                 "at depth) adds its uniform strain, u_x = -(1 - 2 nu) p_inf x/(2 mu_s) and u_z = -(1 - 2 nu) p_inf "
+                 "z/(2 mu_s): u_x is not periodic in x and u_z falls linearly with depth. Within about 1e-13 Delta_1 "
+                 "of independent quadratures in the tests (per-point bound <= 1e-12 Delta_1 up to 5 lambda_1 deep).")
 _PEAK = ("Grid of 41 x 41 points over 0 <= z <= 3a and 0 <= x <= 2a (both signs of x under a tangential load; at "
          "most half a period), refined by 16 zooms of a 9 x 9 grid (docs/theory/wavy.md (W44)); the value to the "
          "fields' accuracy, the position to about 1e-8 a (the field is flat at its peak).")
 _SERIES = ("the closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or the truncated Bessel "
            "series of eq. (14) (non-periodic) for this 2a/lambda_1 and harmonic count")
+#: the codes of the point validity and of the peaks' (physics.flags), and those the comments name
+APPROXIMATE, SUBSTITUTED, UNDEFINED = (int(V.approximate_formula), int(V.nonperiodic_series_within_rtol),
+                                       int(V.undefined_direction_dependent_limit))
+FIELD_CODES = (V.within_stated_accuracy, V.undefined_direction_dependent_limit, V.series_not_converged,
+               V.approximate_formula, V.nonperiodic_series_within_rtol, V.stick_zone_not_admissible)
+PEAK_CODES = (V.within_stated_accuracy, V.search_not_converged, V.stick_zone_not_admissible)
 VARIABLES = (
     Variable("pressure", "contact pressure p(x) (compressive positive; 0 outside the contact)",
              units_physical="Pa", scale=PSTAR, dims=SURFACE,
              comment="Exact series, length chosen from method.rtol (see n_terms, error_estimate). With "
                      "method approximate_eq18/eq20 it is instead the paper's approximate formula, which is "
-                     "NOT accurate (validity = 2); all other variables stay exact.", label="contact pressure p(x)"),
+                     f"NOT accurate (validity = {APPROXIMATE}); all other variables stay exact.",
+             label="contact pressure p(x)"),
     Variable("uz", "surface displacement u_z(x), positive into the body", units_physical="m",
              scale=DELTA_1, dims=SURFACE,
              comment="Datum (C = 0 in eq. 5): periodic domain, kernel ln|2 sin(pi (x - xi)/lambda_1)|, so u_z "
@@ -152,7 +189,7 @@ VARIABLES = (
                      "eqs. (1) and (2) differ by a smooth term), docs/theory/wavy.md (W26); +inf where that "
                      "interpolant is not resolved. "
                      "Method auto uses the non-periodic series for a periodic pressure where this plus the "
-                     "non-periodic series error is below the tolerance (validity = 3).",
+                     f"non-periodic series error is below the tolerance (validity = {SUBSTITUTED}).",
                      label="periodic correction"),
     Variable("error_estimate", "upper bound of the error of pressure, peak_pressure and max_pressure (only; "
              "not of uz) and, where the recipe gives z, of the stresses below the surface under normal load (under "
@@ -162,9 +199,9 @@ VARIABLES = (
              comment="In units of p* (docs/theory/wavy.md (W23), (W31)). It does not bound uz, whose scale is "
                      "Delta_1: inside the contact uz = u_z(0) - g(x) from closed forms; outside it is good to "
                      "about error_estimate/p* * (|x| - a) * 2 pi/lambda_1 * Delta_1 plus the gap quadrature "
-                     "(below 1e-13 Delta_1 in the tests). Where validity = 3 the pressure is instead within "
-                     "periodic_correction plus the non-periodic series error of the periodic one, together "
-                     "below method.rtol.", label="error bound"),
+                     f"(below 1e-13 Delta_1 in the tests). Where validity = {SUBSTITUTED} the pressure is "
+                     "instead within periodic_correction plus the non-periodic series error of the periodic "
+                     "one, together below method.rtol.", label="error bound"),
     Variable("converged", f"whether the pressure of {_SERIES} met method.rtol (error_estimate <= "
              "method.rtol * p*)", dtype="int8", dims=CASE, flag_values=(0, 1),
              flag_meanings=("not_converged", "converged"), always=True,
@@ -185,8 +222,8 @@ VARIABLES = (
              units_physical="Pa", scale=PSTAR, recorded_when=("z",), label="von Mises stress"),
     Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z (at z = 0: the "
              "limit z -> 0+)", units_physical="Pa/m", scale=PER_HALF_WIDTH, recorded_when=("z",),
-             comment="NaN (validity = 4) at z = 0 on a contact edge and, under partial slip, a stick edge, where the "
-                     "limit depends on the direction of approach. Not covered by error_estimate.",
+             comment=f"NaN (validity = {UNDEFINED}) at z = 0 on a contact edge and, under partial slip, a stick "
+                     "edge, where the limit depends on the direction of approach. Not covered by error_estimate.",
              label="dp_h/dz"),
     *(Variable(f"u_{c}", f"displacement u_{c} at depth z (z = 0: the surface; {what})", units_physical="m",
                scale=DELTA_1, comment=_DISPLACEMENT, label=f"displacement u_{c}")
@@ -209,33 +246,36 @@ VARIABLES = (
                                         ("_peak_depth", ": depth z of its largest value", "m", HALF_WIDTH,
                                          "z of peak"))),
     Variable("peak_validity", "validity of the peak variables of the case", dtype="int8", dims=LOADED + ("nu",),
-             flag_values=(0, 4), flag_meanings=("within_stated_accuracy", "search_not_converged"),
              always=tuple(f"{n}{s}" for n in ("tau_max", "von_mises") for s in ("_peak", "_peak_x", "_peak_depth")),
-             comment="4: the best point lies on the border of the search box (|x| = 2a or half a period, z = 3a): "
-                     "the values are the best found there, not necessarily the peak.",
+             **declare(PEAK_CODES, where={
+                 V.search_not_converged: "its box: |x| = 2a or half a period, z = 3a",
+                 V.stick_zone_not_admissible: "the peak variables are NaN"}),
              label="validity of the peaks"),
     Variable("validity", "validity of pressure and uz (and of the stresses below the surface) at the point",
-             dtype="int8", flag_values=(0, 1, 2, 3, 4, 5),
-             flag_meanings=("series_converged", "series_not_converged", "approximate_formula",
-                            "nonperiodic_series_within_rtol", "undefined_direction_dependent_limit",
-                            "stick_zone_not_admissible"), always=True,
-             comment="1: the series did not meet method.rtol (see converged, error_estimate); 2: method "
-                     "approximate_eq18/eq20, pressure is the paper's inaccurate approximation; 3: method auto, "
-                     "periodic domain: pressure is the non-periodic series, within method.rtol of the "
-                     "periodic one (see periodic_correction); uz and the per-case values stay periodic. Below the "
-                     "surface: 1 also where the stresses' bound exceeds method.rtol; 4: dpdz is NaN at z = 0 on a "
-                     "contact or stick edge (its limit depends on the direction of approach); 5: partial slip "
-                     "where the load P(c) is not increasing on [c, a], so the stick zone would not shrink "
-                     "monotonically under the growing tangential load and the superposition (W43) is not the "
-                     "solution.",
+             dtype="int8", always=True, **declare(FIELD_CODES, where={
+                 V.undefined_direction_dependent_limit: "dpdz at z = 0 on a contact or stick edge",
+                 V.series_not_converged: "see converged, error_estimate; below the surface also where the "
+                                         "stresses' bound exceeds method.rtol",
+                 V.approximate_formula: "method approximate_eq18/eq20: the pressure is the paper's approximation",
+                 V.nonperiodic_series_within_rtol: "method auto, periodic domain: the pressure, see "
+                                                   "periodic_correction; uz and the per-case values stay periodic",
+                 V.stick_zone_not_admissible: "flagged at every point of such a case, whichever variables the "
+                                              "file holds: the stresses, dpdz, shear_traction, the displacements "
+                                              "below the surface and the peaks are NaN there, stick_half_width is "
+                                              "the root of P(c) = (1 - fx) P(a) but not a stick zone, and pressure "
+                                              "and uz stay exact (uncoupled)"}),
              label="validity"),
 )
 #: the variables written when a recipe names none: those of the surface (the field below it joins when
 #: the recipe gives z, the shear traction and stick width with a tangential load: ``recorded_when``)
 DEFAULTS = tuple(v.name for v in VARIABLES[:VARIABLES.index(next(v for v in VARIABLES if v.name == "sigma_xx"))]
                  if not v.always)
-#: variable -> the scale its normalised value is multiplied by in physical mode (its declaration's)
-_SCALE = {v.name: v.scale for v in VARIABLES if v.scale}
+#: the field below the surface (stresses, dpdz, displacements, their peaks) takes the route table's
+#: "stress" group; the surface quantities its "surface" group
+VARIABLES = tuple(dataclasses.replace(v, group="stress") if not v.flag_values and (
+    v.name.startswith(("sigma_", "u_")) or v.name in ("von_mises", "tau_max", "dpdz") or "_peak" in v.name) else v
+    for v in VARIABLES)
+DECLARED = {v.name: v for v in VARIABLES}
 
 
 def evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options) -> dict[str, np.ndarray]:
@@ -255,28 +295,32 @@ def _evaluate(names: Sequence[str], p: Mapping[str, Any], options: Options, peri
 
     amps, wns = np.asarray(p["amplitudes"], dtype=float), np.asarray(p["wavenumbers"], dtype=float)
     a = np.asarray(p["a"], dtype=float)
-    if options["physical"]:
-        pstar = math.pi * p["E"] / (1.0 - p["nu"] ** 2) * amps[0] / p["lambda_1"]
-        length, half_width = amps[0], a * p["lambda_1"] / 2.0
-    else:
-        pstar, length, half_width = 1.0, 1.0, 1.0
-    x = np.asarray(p.get("x", 0.0), dtype=float) / half_width
-    z = np.asarray(p.get("z", 0.0), dtype=float) / half_width
+    case = _case(p, options["physical"])
+    x = np.asarray(p.get("x", 0.0), dtype=float) / case["half_width"]
+    z = np.asarray(p.get("z", 0.0), dtype=float) / case["half_width"]
     mu = np.asarray(p.get("mu", 0.0), dtype=float)
     fx = p.get("fx")
     if fx is None and p.get("tangential_force") is not None:
         # Q per period (per unit length) over mu P, P = p_inf lambda_1 with p_inf in pascals (W10)
-        load = wv.mean_pressure(a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics")) * pstar
+        load = wv.mean_pressure(a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics")) * case["p*"]
         with np.errstate(divide="ignore", invalid="ignore"):
             fx = np.where(mu > 0.0, np.asarray(p["tangential_force"], dtype=float) / (mu * load * p["lambda_1"]), 0.0)
     fx = np.asarray(0.0 if fx is None else fx, dtype=float)
     raw = wv.fields(names, x, a, amps, wns, periodic=periodic, n_harmonics=p.get("n_harmonics"),
                     method=options["method"], rtol=options["rtol"],
-                    contact_points=_contact_points(options, a, half_width), z_over_a=z,
+                    contact_points=_contact_points(options, a, case["half_width"]), z_over_a=z,
                     nu=np.asarray(p.get("nu", 0.3), dtype=float), mu=mu, fx=fx,
                     below=(options.get("sweep") or p).get("z") is not None)
-    factor = {PSTAR: pstar, DELTA_1: length, HALF_WIDTH: half_width, PER_HALF_WIDTH: pstar / half_width}
-    return {n: raw[n] * factor[_SCALE[n]] if n in _SCALE else raw[n] for n in names}
+    return apply_scales({n: raw[n] for n in names}, DECLARED, case, options["physical"])
+
+
+def _case(p: Mapping[str, Any], physical: bool) -> Case:
+    """The quantities the family's scales read: p*, Delta_1 and the half-width a in SI units (physical
+    mode; 1 normalised, where x and z are already in units of a)."""
+    if not physical:
+        return Case(half_width=1.0)
+    return Case(Delta_1=lambda: np.asarray(p["amplitudes"], dtype=float)[0], half_width=half_width(p),
+                **{"p*": lambda: pstar(p)})
 
 
 def _contact_points(options: Options, a: np.ndarray, half_width) -> np.ndarray | None:
@@ -293,8 +337,12 @@ def _contact_points(options: Options, a: np.ndarray, half_width) -> np.ndarray |
     return np.searchsorted(x_all, limit, side="right")
 
 
-def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
-    """Cross-parameter checks: the harmonic table, n_harmonics against it, approximations' domain."""
+def check(values: Mapping[str, Any], physical: bool, options: Mapping[str, Any]) -> list[str]:
+    """Cross-parameter checks: the harmonic table, n_harmonics against it, the displacements' method
+    (``options``: the recipe's [method] table; where the approximate methods have no route, below the
+    surface, on a periodic domain or under a tangential load, is the route table's to refuse,
+    ``physics.wavy.resolve``)."""
+    method = options["method"]
     amps, wns = values.get("amplitudes"), values.get("wavenumbers")
     if amps is None or wns is None:
         return []
@@ -323,41 +371,27 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
     elif N is not None and np.max(N) > len(wns):
         problems.append(f"n_harmonics = {_show(np.max(N))} exceeds the harmonic table; allowed: an integer in "
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
-    problems += _check_loads(values, physical, method)
+    problems += _check_loads(values, physical)
     moved = [v for v in ("u_x", "u_z") if v in getattr(values, "variables", ())]
-    if moved and (isinstance(domain := values.get("domain"), np.ndarray) or domain != "nonperiodic"):
-        problems.append(f"output.variables: {', '.join(moved)} below the surface are produced for the single "
-                        f"indenter only; they need domain = 'nonperiodic', got domain = {_show(domain)}")
-    elif moved and method in WAVY_APPROXIMATE_METHODS:
+    if moved and method in WAVY_APPROXIMATE_METHODS:
         problems.append(f"method.method = {method!r} is an approximate pressure; {', '.join(moved)} need an exact "
                         f"method ({', '.join(WAVY_SERIES_METHODS)})")
-    domain = values.get("domain")
-    if method in WAVY_APPROXIMATE_METHODS and (isinstance(domain, np.ndarray) or domain != "nonperiodic"):
-        problems.append(f"method.method = {method!r} is the paper's approximation for a non-periodic indenter; "
-                        f"it needs domain = 'nonperiodic', got domain = {_show(domain)}")
     return problems
 
 
-def _check_loads(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
-    """nu in physical mode; the depth and the tangential load: exact methods only; the tangential load with mu,
-    at most mu P."""
+def _check_loads(values: Mapping[str, Any], physical: bool) -> list[str]:
+    """nu in physical mode; the tangential load with mu, at most mu P (that it needs an exact method is the
+    route table's to say, ``physics.wavy.resolve``)."""
     problems = []
-    if values.get("z") is not None and method in WAVY_APPROXIMATE_METHODS:
-        problems.append(f"method.method = {method!r} is an approximate pressure; the field below the surface (z) "
-                        f"needs an exact method ({', '.join(WAVY_SERIES_METHODS)})")
     if physical and values.get("nu") is None:
         problems.append("missing parameter 'nu' (Poisson's ratio of the half-plane; a number in [0, 0.5]): "
                         "required in physical mode")
-    load = next((k for k in ("fx", "tangential_force") if values.get(k) is not None
-                 and np.any(np.asarray(values[k], dtype=float) > 0.0)), None)
+    load = _load(values)
     if load is None:
         return problems
     if values.get("mu") is None:
         problems.append(f"{load} is a tangential load of partial slip, which needs the friction coefficient mu; "
                         "give mu (a number in [0, 10])")
-    if method in WAVY_APPROXIMATE_METHODS:
-        problems.append(f"method.method = {method!r} is an approximate pressure; a tangential load ({load}) needs an "
-                        f"exact method ({', '.join(WAVY_SERIES_METHODS)})")
     if load == "tangential_force" and values.get("mu") is not None and not problems and physical:
         problems += _check_tangential_force(values)
     return problems
@@ -369,8 +403,8 @@ def _check_tangential_force(values: Mapping[str, Any]) -> list[str]:
     from ..physics.wavy import mean_pressure
 
     amps, wns = np.asarray(values["amplitudes"], dtype=float), np.asarray(values["wavenumbers"], dtype=float)
-    E, nu, lam = (float(values[k]) for k in ("E", "nu", "lambda_1"))
-    pstar = math.pi * E / (1.0 - nu ** 2) * amps[0] / lam
+    lam = float(values["lambda_1"])
+    scale = pstar({k: float(values[k]) for k in ("E", "nu", "lambda_1")} | {"amplitudes": amps})
     a = np.asarray(values["a"], dtype=float).reshape(-1, 1, 1, 1)
     N = values.get("n_harmonics")
     N = np.asarray(len(wns) if N is None else N).reshape(1, -1, 1, 1)
@@ -379,7 +413,7 @@ def _check_tangential_force(values: Mapping[str, Any]) -> list[str]:
     domains = values.get("domain", "periodic")
     for domain in np.atleast_1d(np.asarray(domains, dtype=object)):
         try:
-            P = mean_pressure(a, amps, wns, periodic=domain == "periodic", n_harmonics=N) * pstar * lam
+            P = mean_pressure(a, amps, wns, periodic=domain == "periodic", n_harmonics=N) * scale * lam
         except ValueError:
             return []                 # the harmonic table's own problems are reported elsewhere
         over = Q > mu * P * (1.0 + 1e-12)
@@ -398,12 +432,20 @@ def _complete(values: dict) -> None:
         values["nu"] = 0.3
 
 
-def _route(values: Mapping[str, Any], method: str, rtol: float) -> tuple[str, str]:
-    """The route table's (route, accuracy) of the method, whatever the values (``physics.wavy.resolve``)."""
+def _route(values: Mapping[str, Any], method: str, rtol: float, groups) -> dict[str, tuple[str, str]]:
+    """The route table's (route, accuracy) of the method for each group (``physics.wavy.resolve``); with
+    z given the field below the surface is computed."""
     from ..physics.wavy import resolve
 
-    below = values.get("z") is not None and method not in WAVY_APPROXIMATE_METHODS
-    return resolve(method, rtol, below=below)
+    domain = values.get("domain", "periodic")
+    return {g: resolve(method, rtol, below=values.get("z") is not None, group=g, load=_load(values),
+                       domain=domain if isinstance(domain, str) else list(np.ravel(domain))) for g in groups}
+
+
+def _load(values: Mapping[str, Any]) -> str | None:
+    """The recipe's key of a tangential load (fx or tangential_force, > 0 somewhere), or None."""
+    return next((k for k in ("fx", "tangential_force") if values.get(k) is not None
+                 and np.any(np.asarray(values[k], dtype=float) > 0.0)), None)
 
 
 def _show(v):

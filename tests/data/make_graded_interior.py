@@ -58,21 +58,25 @@ def cases():
 
 
 def main(argv):
+    run(argv, cases(), stress, ("rho", "z", "k", "e"), write)
+
+
+def run(argv, points, stress, keys, write):
     """All points; or ``FIRST LAST``: the points FIRST..LAST-1 as lines of a part (one process per core),
-    joined by ``--join PART...`` into the JSON file."""
+    joined by ``--join PART...`` into the JSON file (``write``).  ``stress(*point)`` gives (value, error) per
+    component; ``keys`` name the point's entries in a row."""
     if argv and argv[0] == "--join":
         rows = {}
         for part in argv[1:]:
             with open(part) as fh:
                 rows.update((int(i), row) for i, row in (json.loads(line) for line in fh))
-        write([rows[i] for i in range(len(cases()))])
+        write([rows[i] for i in range(len(points))])
         return
-    todo = range(int(argv[0]), int(argv[1])) if argv else range(len(cases()))
+    todo = range(int(argv[0]), int(argv[1])) if argv else range(len(points))
     rows = []
     for i in todo:
-        r, z, k, e = cases()[i]
-        s = stress(r, z, k, e)
-        row = dict(rho=r, z=z, k=k, e=e, **{f"sigma_{c}": float(v) for c, (v, _) in s.items()},
+        s = stress(*points[i])
+        row = dict(zip(keys, points[i]), **{f"sigma_{c}": float(v) for c, (v, _) in s.items()},
                    err=float(max(er for _, er in s.values())))
         rows.append(row)
         print(json.dumps([i, row]), flush=True)

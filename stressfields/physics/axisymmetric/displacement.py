@@ -32,6 +32,7 @@ from ..quadrature import gauss_jacobi, gauss_legendre, group_by
 from .hertz_geometry import geometry, one_minus_m_atan, x_minus_sin
 from .interior_hertz import sliding_scalars
 from .profiles import Profile
+from .routes import has_displacement_closed_form  # noqa: F401 (the route table decides; re-exported)
 from .superposition import Nodes, check_arguments, flat_arguments, interior_orders, live_nodes, superpose
 
 __all__ = ["NAMES", "displacements", "tangential_displacements", "has_displacement_closed_form",
@@ -342,12 +343,6 @@ def _slip(profile, shape, ux0, mu, nu, a, c):
         slip = np.where(mu_ > 0.0, 2.0 * (1.0 - nu) / (2.0 - nu) * ux / mu_, 1.0)   # (A32): 1 - (c/a)^2
         # only where u_x0 is the one of this c (the traction is fixed by c and mu_kernel)
         return np.where((slip > 0.0) & (np.abs(1.0 - slip - (c / a) ** 2) <= 1e-13), slip, np.nan)
-
-
-def has_displacement_closed_form(profile: Profile) -> bool:
-    """Whether the displacements of ``profile`` have a closed form (flat punch, paraboloid, power
-    law n = 2); every other profile takes the 1-D route."""
-    return profile.kind == "flat_punch" or (profile.closed is not None and profile.closed[0] == "paraboloid")
 
 
 def _validate(z, a, c, nu, muk, profile, rtol):

@@ -31,6 +31,20 @@ g' ~ rho^m0, m0 < 0) included, reaches the normal route's rtol = 1e-12 there.
 
 ``resolve_depth`` joins the two for a set of depths (z = 0 takes the surface route).
 
+``resolve(..., group=...)`` answers for every group of variables (``GROUPS``), each with its own
+route and accuracy, written into the attributes of that group's variables:
+
+* ``stress`` and ``dpdz`` -- the fields above, on the surface and below it (``resolve_depth``);
+  a rtol below the superposition's floor (``tangential_floor``) below the surface is refused;
+* ``displacement`` -- closed forms for the flat punch and the paraboloid (and the power law n = 2),
+  docs/theory/interior.md (I37)-(I41); every other profile, and the paraboloid under
+  ``quadrature``, the 1-D superposition of punches (I42)-(I44) within rtol * max(|value|, delta),
+  also under ``closed`` (the stresses of the cone have closed forms, its displacements do not: the
+  route says so);
+* ``peaks`` -- the converged search of ``peaks`` over the field on and below the surface;
+* ``contact`` -- the normal contact, the stick radius and the tangential load (contact radius,
+  mean pressure, forces): the profile's closed forms, else its quadrature (the surface route).
+
 The strings of ``resolve`` are written into files; they state the accuracy contract, proved by
 tests/physics/test_axisymmetric_contract.py, tests/physics/test_axisymmetric_tabulated.py,
 tests/physics/test_interior_superposition.py and tests/test_scenario_interior.py.
@@ -43,7 +57,8 @@ import numpy as np
 
 from ..names import AXISYMMETRIC_METHODS
 
-__all__ = ["METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED", "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
+__all__ = ["GROUPS", "has_displacement_closed_form", "METHODS", "CLOSED_KINDS", "POWER_LAW_CLOSED",
+           "INTERIOR_CLOSED_KINDS", "INTERIOR_RTOL", "Route",
            "power_law_family", "has_closed_form", "has_interior_closed_form", "resolve", "resolve_interior",
            "INTERIOR_TANGENTIAL_CLOSED_KINDS", "has_interior_tangential_closed_form",
            "TANGENTIAL_TIP_RTOL", "resolve_depth", "tangential_floor"]
@@ -109,19 +124,63 @@ def has_closed_form(kind: str, n=None) -> bool:
     return kind in CLOSED_KINDS or (kind == "power_law" and power_law_family(n) is not None)
 
 
-def resolve(profile, method: str, rtol: float, n=None) -> Route:
-    """The route ``method`` takes for a profile and how accurate it is.
+#: the groups of variables the table answers for (``resolve(..., group=...)``)
+GROUPS: tuple[str, ...] = ("stress", "dpdz", "displacement", "peaks", "contact")
+
+_DISPLACEMENT_SUPERPOSITION = ("1-D superposition of punches and sliding punches (Gauss quadrature, "
+                               "docs/theory/interior.md (I42)-(I44))")
+_NO_DISPLACEMENT_CLOSED = " (the displacements of this profile have no closed form)"
+_SEARCH = "converged search (physics.axisymmetric.peaks) of the field on and below the surface: "
+
+
+def resolve(profile, method: str, rtol: float, n=None, *, group: str = "stress", z=None,
+            tangential: bool = False) -> Route:
+    """The route ``method`` takes for a profile and a group of variables, and how accurate it is.
 
     ``profile`` is a profile kind ("cone", "paraboloid", "power_law", "flat_punch", "tabulated"),
     with ``n`` the exponent of a power law, or a ``Profile`` (its kind and exponent are used).
-    ``auto`` is the closed form where one exists (``has_closed_form``), else the quadrature."""
+    ``auto`` is the closed form where one exists (``has_closed_form``), else the quadrature.
+    ``group`` is one of ``GROUPS``; ``z`` the depths of the recipe (None: the surface) and
+    ``tangential`` whether a Cattaneo–Mindlin load acts, for the fields below the surface
+    (``resolve_depth``).  A method the profile has no route for raises ValueError (``closed``
+    without a closed form; rtol below ``tangential_floor`` for the superposition below the surface),
+    in words a recipe check can quote after "method.".
+    """
     if not isinstance(profile, str):
         profile, n = profile.kind, getattr(profile, "n", None)
     if method not in METHODS:
         raise ValueError(f"unknown axisymmetric method {method!r}; allowed: {', '.join(METHODS)}")
+    if group not in GROUPS:
+        raise ValueError(f"unknown variable group {group!r}; allowed: {', '.join(GROUPS)}")
+    if method == "closed" and not has_closed_form(profile, n):
+        raise ValueError(f"method = 'closed' has no closed form for profile = {profile!r}; use 'auto' or "
+                         "'quadrature'")
+    if group == "contact" or (group in ("stress", "dpdz") and z is None):
+        return _surface(profile, method, rtol, n)
+    if group == "displacement":
+        if profile == "flat_punch" or (method != "quadrature" and has_displacement_closed_form(profile, n)):
+            return Route(*_CLOSED)
+        return Route(_DISPLACEMENT_SUPERPOSITION + (_NO_DISPLACEMENT_CLOSED if method == "closed" else ""),
+                     f"|error| <= rtol = {rtol:g} times max(|value|, delta), delta the indentation depth")
+    if group == "peaks":
+        field = _depths(profile, method, rtol, n, (0.0, 1.0), tangential)
+        return Route(_SEARCH + field.route, f"{field.accuracy}; positions within about 1e-7 a")
+    return _depths(profile, method, rtol, n, z, tangential)
+
+
+def _surface(profile: str, method: str, rtol: float, n) -> Route:
     if method == "closed" or (method == "auto" and has_closed_form(profile, n)):
         return Route(*_CLOSED)
     return Route(_QUADRATURE, _quadrature_accuracy(rtol))
+
+
+def has_displacement_closed_form(profile, n=None) -> bool:
+    """Whether the displacements of a profile (a kind with ``n``, or a ``Profile``) have a closed form:
+    the flat punch, the paraboloid and the power law n = 2 (docs/theory/interior.md (I37)-(I41));
+    every other profile takes the 1-D superposition."""
+    if not isinstance(profile, str):
+        profile, n = profile.kind, getattr(profile, "n", None)
+    return profile in ("flat_punch", "paraboloid") or (profile == "power_law" and power_law_family(n) == "paraboloid")
 
 
 def _quadrature_accuracy(rtol: float, tangential: bool = False) -> str:
@@ -158,12 +217,13 @@ def resolve_interior(profile, method: str, rtol: float, n=None, tangential: bool
         raise ValueError(f"unknown axisymmetric method {method!r}; allowed: {', '.join(METHODS)}")
     closed = has_interior_closed_form(profile, n)
     if method == "closed" and not closed:
-        raise ValueError(f"method 'closed' has no closed form below the surface for profile {profile!r}; "
-                         "use 'auto' or 'quadrature'")
+        raise ValueError(f"method = 'closed' has no closed form below the surface (z > 0) for profile = "
+                         f"{profile!r}; use 'auto' or 'quadrature', or z = 0")
     both = closed and (not tangential or has_interior_tangential_closed_form(profile, n))
     if method == "closed" and not both:
-        raise ValueError(f"method 'closed' has no closed form below the surface under tangential load for "
-                         f"profile {profile!r} (its normal part has one); use 'auto' or 'quadrature'")
+        raise ValueError(f"method = 'closed' has no closed form below the surface (z > 0) under tangential load "
+                         f"for profile = {profile!r} (its normal part has one); use 'auto' or 'quadrature', or "
+                         "z = 0")
     if profile == "flat_punch" or (both and method != "quadrature"):
         return Route(f"{_CLOSED[0]} below the surface" + (_CLOSED_TANGENTIAL if tangential else ""), _CLOSED[1])
     if not tangential:
@@ -190,10 +250,21 @@ def resolve_depth(profile, method: str, rtol: float, n=None, z=None, tangential:
     """The route for the depths ``z`` (None: the surface only): ``resolve`` where every z is 0,
     ``resolve_interior`` where every z > 0, both ("z = 0: ...; z > 0: ...") for a mix;
     ``tangential`` as ``resolve_interior``."""
-    surface = resolve(profile, method, rtol, n)
+    if not isinstance(profile, str):
+        profile, n = profile.kind, getattr(profile, "n", None)
+    return _depths(profile, method, rtol, n, z, tangential)
+
+
+def _depths(profile: str, method: str, rtol: float, n, z, tangential: bool) -> Route:
+    surface = _surface(profile, method, rtol, n)
     depth = np.asarray(0.0 if z is None else z, dtype=float)
     if not np.any(depth > 0.0):
         return surface
+    floor = tangential_floor(profile, n) if tangential else INTERIOR_RTOL
+    if rtol < floor and resolve_interior(profile, method, floor, n, tangential=tangential).kernel != "closed":
+        load = " under tangential load" if floor > INTERIOR_RTOL else ""
+        raise ValueError(f"rtol = {rtol:g} is below {floor:g}, the smallest the superposition below the surface "
+                         f"(z > 0) reaches{load} for {profile!r}; use rtol >= {floor:g}, or z = 0")
     interior = resolve_interior(profile, method, rtol, n, tangential)
     if np.all(depth > 0.0):
         return interior

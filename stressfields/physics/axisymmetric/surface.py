@@ -41,6 +41,7 @@ from ..quadrature import orders
 from . import integrals, normal, tangential
 from .common import arccosh_ratio
 from .integrals import log_integral, tau_integrals, theta_moments
+from .routes import resolve
 
 __all__ = ["surface_stress", "surface_dpdz", "stick_radius", "mean_pressure", "min_pressure"]
 
@@ -496,7 +497,7 @@ def _min_pressure(profile, a: float) -> tuple[float, float]:
         grid.append((inner[:, None] + np.outer(np.diff(np.append(inner, a)), np.linspace(0, 1, 16))).ravel())
     r = np.unique(np.concatenate(grid))
     r = r[r < a]
-    method = "closed" if profile.kind == "flat_punch" or profile.has_closed_form else "quadrature"
+    method = resolve(profile, "auto", 1e-10).kernel       # what auto means: the route table's
     p = -surface_stress(r, 0.0, a, a, 0.3, 0.0, profile, components=("zz",), method=method)["zz"]
     p = p / mean_pressure(a, profile)
     i = int(np.argmin(p))

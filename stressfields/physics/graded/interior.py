@@ -1,5 +1,5 @@
 """Below the surface of the power-law graded half-space: the stress tensor under the normal and the
-adhesive (JKR-type) MDR contact, docs/theory/graded.md section 10 ((G56)-(G68)).
+adhesive (JKR-type) MDR contact, docs/theory/graded.md section 10 ((G57)-(G70)).
 
 Two cases are solved, every other (k, nu) is refused (``check_supported``):
 
@@ -9,7 +9,9 @@ Two cases are solved, every other (k, nu) is refused (``check_supported``):
   of flat punches otherwise) times c_N*; with adhesion minus the flat-punch field of the depth
   Delta l_max (``axisymmetric.interior_hertz.punch_unit``), (G57)-(G58).
 * k > 0 with nu = 1/(2+k) (Holl): the area integral of the radial point-load field over the contact
-  (``holl.disc_stress``, (G60)-(G65)); the paraboloid, whose pressure is a sum of (1 - rho^2)^e terms.
+  (``holl.disc_stress``, (G60)-(G65)) for every power law (paraboloid, cone, A r^n): the paraboloid's
+  pressure is a sum of (1 - rho^2)^e terms, any other power law's is (1 - rho^2)^((1+k)/2) times its
+  shape S(rho) (``holl.PressureShape``, (G70)), with the adhesive term of the paraboloid.
 
 On the surface z = 0 the values are the limits z -> 0+: sigma_zz = -p with p the family's pressure
 (the same call, so bit for bit the ``pressure`` variable), and the other components from the
@@ -18,31 +20,38 @@ at x = r: "rr", "tt" (hoop), "zz", "rz"; tension positive, z into the body, stre
 """
 from __future__ import annotations
 
+import functools
 import math
 from typing import Sequence
 
 import numpy as np
 
+from ..flags import Validity
 from ..invariants import principal_stresses, singular_limits, von_mises
 from ..names import PRINCIPAL
 from . import adhesive, holl
 from .fields import adhesive_fields, normal_fields
 from .indenter import Indenter
 from .material import c_N_star
+from .normal import pressure_shape
 from .profiles import kappa
 
-__all__ = ["INTERIOR", "STRESS", "supported", "check_supported", "interior_fields", "UNRESOLVED"]
+__all__ = ["INTERIOR", "STRESS", "supported", "check_supported", "interior_fields", "UNRESOLVED", "peaks",
+           "tangential_interior_fields", "tangential_peaks"]
 
 #: the stress components, in the order of the files
 STRESS = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz")
 #: everything ``interior_fields`` computes
 INTERIOR = STRESS + ("von_mises",) + PRINCIPAL + ("tau_max",)
 #: validity code of a point below the surface that the routes do not resolve (as the axisymmetric family)
-UNRESOLVED = 3
+UNRESOLVED = Validity.not_resolved_below_the_surface
 #: nu is Holl's ratio 1/(2+k) to this relative tolerance (as ``material.tangential_decoupled``)
 _HOLL_RTOL = 1e-9
 SUPPORTED = ("below the surface the graded family solves k = 0 (any nu) and k > 0 with nu = 1/(2+k) "
-             "(poisson = 'holl_ratio', the paraboloid)")
+             "(poisson = 'holl_ratio'), for the parabolic, conical and power-law profiles")
+#: why a tabulated profile is refused below the surface (docs/theory/graded.md section 10, Limits)
+_TABULATED = ("its spline's pressure is known only by the quadrature of (G17), whose end conditions differ from "
+              "the axisymmetric family's at k = 0 and which would be needed at every radial node at k > 0")
 
 
 def supported(k, nu):
@@ -53,7 +62,7 @@ def supported(k, nu):
 
 def check_supported(k, nu, kind: str) -> None:
     """ValueError (one line, naming the first unsupported value and the supported cases) unless every
-    (k, nu) is solved and a k > 0 comes with the paraboloid."""
+    (k, nu) is solved and the profile is a power law."""
     k, nu = np.broadcast_arrays(np.asarray(k, dtype=float), np.asarray(nu, dtype=float))
     ok = supported(k, nu)
     if not np.all(ok):
@@ -61,13 +70,7 @@ def check_supported(k, nu, kind: str) -> None:
         raise ValueError(f"nu = {nb!r} with k = {kb!r} is not solved below the surface: {SUPPORTED}; "
                          f"here 1/(2+k) = {1.0 / (2.0 + kb):.12g}")
     if kind == "tabulated":
-        # its spline (end conditions of profiles.Tabulated) is not the axisymmetric family's, so the k = 0
-        # interior would not meet the surface pressure of this family
-        raise ValueError(f"profile = 'tabulated' is not solved below the surface: {SUPPORTED}, for the "
-                         "parabolic, conical and power-law profiles at k = 0")
-    if kind != "parabolic" and np.any(k > 0.0):
-        raise ValueError(f"profile = {kind!r} with k = {float(np.max(k))!r} is not solved below the surface: "
-                         f"{SUPPORTED}")
+        raise ValueError(f"profile = 'tabulated' is not solved below the surface ({_TABULATED}): {SUPPORTED}")
 
 
 def _axisymmetric_profile(profile: Indenter, geometry):
@@ -88,8 +91,9 @@ def interior_fields(names: Sequence[str], profile: Indenter, *, a, rho, z, k, nu
     Normal contact (``delta_gamma`` None) or adhesive (JKR-type, work of adhesion ``delta_gamma``) of a
     rigid indenter at contact radius ``a``; ``rho``, ``z`` in units of a; E0, c0, k, nu as the surface
     entry points.  Every argument broadcasts (the geometry arrays of ``profile`` too).  Routes and
-    accuracy: docs/theory/graded.md (G67); singular points (conical tip at k = 0, adhesive edge r = a)
-    only at z = 0, with +-inf or NaN as the surface fields (G68).
+    accuracy: docs/theory/graded.md (G67), (G70); singular points (conical tip at k = 0, the centre of a
+    power law with n + k <= 1 at k > 0, adhesive edge r = a) only at z = 0, with +-inf or NaN as the
+    surface fields (G68).
     """
     names = _known(names, INTERIOR)
     if not names:
@@ -170,18 +174,27 @@ def _homogeneous(T, idx, flat, A, RHO, Z, NU, cN, dl, method, rtol):
 
 
 def _holl(T, idx, flat, A, RHO, Z, K, cN, dl, rtol):
-    """k > 0, nu = 1/(2+k), paraboloid: p = P (1-rho^2)^((1+k)/2) - Q (1-rho^2)^(-(1-k)/2) (G18), (G24),
-    each term by ``holl.disc_stress`` (G62)."""
+    """k > 0, nu = 1/(2+k): p = P Phi(rho) - Q (1-rho^2)^(-(1-k)/2) (G18), (G24), each term by
+    ``holl.disc_stress`` (G62); Phi = (1-rho^2)^((1+k)/2)/(1+k) for the paraboloid, else its shape (G70)."""
     if idx.size == 0:
         return
     n, A_n = flat.power()
     n = np.broadcast_to(np.asarray(n, dtype=float), A.shape)[idx]
     A_n = np.broadcast_to(np.asarray(A_n, dtype=float), A.shape)[idx]
     k, a = K[idx], A[idx]
-    P = cN[idx] * n * kappa(n, k) * A_n * a ** (n + k - 1.0) / (math.pi * (1.0 + k))
-    part = holl.disc_stress(RHO[idx], Z[idx], k, 0.5 * (1.0 + k), rtol)
-    for c in holl.COMPONENTS:
-        T[c][idx] = P * part[c]
+    P = cN[idx] * n * kappa(n, k) * A_n * a ** (n + k - 1.0)       # over pi: the amplitude of Phi (G18)
+    para = n == 2.0
+    if np.any(para):
+        i = idx[para]
+        part = holl.disc_stress(RHO[i], Z[i], K[i], 0.5 * (1.0 + K[i]), rtol)
+        for c in holl.COMPONENTS:
+            T[c][i] = P[para] / (math.pi * (1.0 + K[i])) * part[c]
+    for nk in np.unique(np.stack([n[~para], k[~para]], axis=-1), axis=0):
+        sel = np.flatnonzero(~para & (n == nk[0]) & (k == nk[1]))
+        i = idx[sel]
+        part = holl.disc_stress(RHO[i], Z[i], K[i], 0.5 * (1.0 + K[i]), rtol, shape=_shape(*map(float, nk)))
+        for c in holl.COMPONENTS:
+            T[c][i] = P[sel] / math.pi * part[c]
     adh = dl[idx] > 0.0
     if np.any(adh):
         i = idx[adh]
@@ -189,6 +202,14 @@ def _holl(T, idx, flat, A, RHO, Z, K, cN, dl, rtol):
         part = holl.disc_stress(RHO[i], Z[i], K[i], -0.5 * (1.0 - K[i]), rtol)
         for c in holl.COMPONENTS:
             T[c][i] = T[c][i] - Q * part[c]
+
+
+@functools.lru_cache(maxsize=32)
+def _shape(n: float, k: float) -> holl.PressureShape:
+    """The interpolated shape S = Phi / (1 - rho^2)^((1+k)/2) of f = A r^n (G70), once per (n, k); for n > 4
+    with its edge layer of width 1/n and max(20, n) Chebyshev points per panel (measured: 1e-13 at n = 50)."""
+    return holl.PressureShape(lambda rho: pressure_shape(rho, k=k, n=n), 0.5 * (1.0 + k), n + k - 1.0,
+                              max(20, math.ceil(n)), 1.0 / n if n > 4.0 else None)
 
 
 def _invariants(names, T, flat, A, RHO, Z, K, NU, DG):
@@ -213,7 +234,7 @@ def _invariants(names, T, flat, A, RHO, Z, K, NU, DG):
         lead[edge, 0, 0] = np.where(k[edge] > 0.0, side[edge], 1.0)
         lead[edge, 1, 1] = side[edge]
         lead[edge, 2, 2] = 1.0
-        tip = (r == 0.0) & ~edge                        # conical tip at k = 0: p -> +inf, compression
+        tip = (r == 0.0) & ~edge & (k == 0.0)           # conical tip at k = 0: p -> +inf, compression
         if np.any(tip):
             m = _tip_exponent(flat, bad[tip])
             q = 1.0 - 2.0 * nu[tip]
@@ -221,6 +242,10 @@ def _invariants(names, T, flat, A, RHO, Z, K, NU, DG):
             lead[tip, 0, 0] = -(1.0 - q / (m + 2.0))
             lead[tip, 1, 1] = -(2.0 * nu[tip] + q / (m + 2.0))
             lead[tip, 2, 2] = -1.0
+        tip = (r == 0.0) & ~edge & (k > 0.0)            # tip of f = A r^n, n + k <= 1, at k > 0: (G66)
+        lead[tip] = 0.0
+        lead[tip, 0, 0] = lead[tip, 1, 1] = -side[tip]
+        lead[tip, 2, 2] = -1.0
         # the shear of a punch edge depends on the direction of approach (NaN): only the leading normal
         # stresses are known, so the remainder is unknown and a zero eigenvalue gives NaN
         rest = np.full((bad.size, 3, 3), np.nan)
@@ -305,20 +330,11 @@ def tangential_interior_fields(names: Sequence[str], profile: Indenter, *, a, x,
         E0_2, nu_2 = E0, nu
     shape, (A, X, Z, FX, MU, K, NU, E, C0, E2, NU2, *G) = _flat(profile, z, a, x, z, fx, mu, k, nu, E0, c0, E0_2,
                                                                 nu if nu_2 is None else nu_2)
-    if np.any(K != 0.0):
-        raise ValueError(f"k = {float(K[K != 0.0][0])!r} is not solved below the surface under tangential load: "
-                         "the graded family solves k = 0 there")
-    if profile.kind == "tabulated":
-        raise ValueError("profile = 'tabulated' is not solved below the surface under tangential load: the "
-                         "parabolic, conical and power-law profiles at k = 0")
+    _check_tangential(K, profile)
     cN = c_N_star(K, NU, E, C0, E2, NU2)
     flat = Indenter(profile.kind, tuple(G), profile.table)
-    keys = np.stack(G, axis=-1) if G else np.zeros((A.size, 0))
-    groups = np.unique(keys, axis=0) if keys.shape[1] else np.zeros((1, 0))
     out = {n: np.empty(A.size, dtype=np.int8 if n == "validity" else float) for n in names}
-    for g in groups:
-        sel = np.flatnonzero(np.all(keys == g, axis=1)) if keys.shape[1] else np.arange(A.size)
-        prof = _axisymmetric_profile(flat, [float(v) for v in g])
+    for sel, prof in _profile_groups(flat, G, A.size):
         a_s = A[sel]
         ux0 = displacement_ratio(slip_ratio(prof, a_s, FX[sel]), NU[sel], MU[sel])
         vals, _ = ax.fields(names, prof, X[sel] * a_s, 0.0, Z[sel] * a_s, a=a_s, nu=NU[sel], mu=MU[sel], ux0=ux0,
@@ -326,4 +342,66 @@ def tangential_interior_fields(names: Sequence[str], profile: Indenter, *, a, x,
         for n in names:
             # the family's values are per unit E*: the pair's c_N* takes its place
             out[n][sel] = vals[n] if n == "validity" else vals[n] * cN[sel]
+    return {n: v.reshape(shape) for n, v in out.items()}
+
+
+def _check_tangential(K, profile: Indenter) -> None:
+    """One line unless every k is 0 and the profile a power law (the cases solved under tangential load)."""
+    K = np.asarray(K, dtype=float)
+    if np.any(K != 0.0):
+        raise ValueError(f"k = {float(K[K != 0.0][0])!r} is not solved below the surface under tangential load: "
+                         "the graded family solves k = 0 there")
+    if profile.kind == "tabulated":
+        raise ValueError("profile = 'tabulated' is not solved below the surface under tangential load: the "
+                         "parabolic, conical and power-law profiles at k = 0")
+
+
+def _profile_groups(flat: Indenter, G, size: int):
+    """(indices, axisymmetric profile) per distinct geometry of the flat geometry arrays ``G``."""
+    keys = np.stack(G, axis=-1) if G else np.zeros((size, 0))
+    groups = np.unique(keys, axis=0) if keys.shape[1] else np.zeros((1, 0))
+    for g in groups:
+        sel = np.flatnonzero(np.all(keys == g, axis=1)) if keys.shape[1] else np.arange(size)
+        yield sel, _axisymmetric_profile(flat, [float(v) for v in g])
+
+
+#: the keys of ``tangential_peaks`` (positions in units of the contact radius, x signed along the load)
+TANGENTIAL_PEAKS = ("tau_max_peak", "tau_max_peak_x", "tau_max_peak_depth",
+                    "von_mises_peak", "von_mises_peak_x", "von_mises_peak_depth", "peak_validity")
+
+
+def tangential_peaks(profile: Indenter, *, a, fx, mu, k, nu, E0, c0, E0_2=None, nu_2=None, method: str = "auto",
+                     rtol: float = 1e-10) -> dict[str, np.ndarray]:
+    """The largest tau_max and von Mises in the lower body of the Cattaneo-Mindlin contact at k = 0 (G69) and
+    where they sit (x/a signed along the load, depth z/a), per case of the broadcast arguments, with
+    ``peak_validity`` (the codes of ``axisymmetric.peaks``).
+
+    The field is c_N* of the pair times the axisymmetric family's at the tangential displacement that gives
+    the stick radius of (G33) (:func:`tangential_interior_fields`), and c_N* > 0 is a constant of the case, so
+    the peaks are c_N* times the axisymmetric family's peaks of that field, found by its search
+    (``axisymmetric.peaks``: the surface singular points first, a grid over x in [-2a, 2a] and 41 depths to
+    3a, a bounded Nelder-Mead refinement); the positions do not depend on c_N*.  Body 2 as
+    :func:`tangential_interior_fields`.
+    """
+    from ..axisymmetric.peaks import peaks as ax_peaks
+    from ..axisymmetric.profiles import displacement_ratio, slip_ratio
+
+    if E0_2 is None:
+        E0_2, nu_2 = E0, nu
+    args = [np.asarray(v, dtype=float) for v in (a, fx, mu, k, nu, E0, c0, E0_2, nu if nu_2 is None else nu_2)]
+    shape = np.broadcast_shapes(*(v.shape for v in args), *(g.shape for g in profile.geometry))
+    A, FX, MU, K, NU, E, C0, E2, NU2 = (np.broadcast_to(v, shape).ravel() for v in args)
+    G = [np.broadcast_to(g, shape).ravel() for g in profile.geometry]
+    _check_tangential(K, profile)
+    cN = c_N_star(K, NU, E, C0, E2, NU2)
+    flat = Indenter(profile.kind, tuple(G), profile.table)
+    out = {n: np.empty(A.size, dtype=np.int8 if n == "peak_validity" else float) for n in TANGENTIAL_PEAKS}
+    for sel, prof in _profile_groups(flat, G, A.size):
+        ux0 = displacement_ratio(slip_ratio(prof, A[sel], FX[sel]), NU[sel], MU[sel])
+        found = ax_peaks(prof, a=A[sel], nu=NU[sel], mu=MU[sel], ux0=ux0, method=method, rtol=rtol)
+        for name in ("tau_max", "von_mises"):
+            out[f"{name}_peak"][sel] = cN[sel] * found[f"{name}_peak"]
+            out[f"{name}_peak_x"][sel] = found[f"{name}_peak_r"] / A[sel]
+            out[f"{name}_peak_depth"][sel] = found[f"{name}_peak_depth"] / A[sel]
+        out["peak_validity"][sel] = found["peak_validity"]
     return {n: v.reshape(shape) for n, v in out.items()}

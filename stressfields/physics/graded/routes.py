@@ -26,22 +26,44 @@ def _quadrature_accuracy(rtol: float) -> str:
     return f"relative error at most rtol = {rtol:g} of |value| (graded: rtol is relative to |value|)"
 
 
-def resolve(profile_kind: str, method: str, rtol: float) -> tuple[str, str]:
-    """(route, accuracy) for a profile kind and a method: ``route`` is :data:`CLOSED` or :data:`QUADRATURE`.
+#: the groups of variables the table answers for: the surface quantities (depth, force, pressure,
+#: displacement, stick radius, ...) and the stress below the surface with its peaks
+GROUPS = ("surface", "stress")
 
-    Every power law (paraboloid, cone, A r^n) has the closed forms of the paper, which ``auto``
-    takes; a tabulated profile has none and always takes the quadrature of the MDR rules
-    (docs/theory/graded.md (G14), (G42)), whose accuracy is the requested ``rtol``.
+
+def resolve(profile_kind: str, method: str, rtol: float, *, group: str = "surface", k=None,
+            n=None) -> tuple[str, str]:
+    """(route, accuracy) for a profile kind, a method and a group of variables (``GROUPS``).
+
+    At the surface ``route`` is :data:`CLOSED` or :data:`QUADRATURE`: every power law (paraboloid,
+    cone, A r^n) has the closed forms of the paper, which ``auto`` takes; a tabulated profile has none
+    and always takes the quadrature of the MDR rules (docs/theory/graded.md (G14), (G42)), whose
+    accuracy is the requested ``rtol``.  The ``stress`` group, with the grading exponents ``k`` of a
+    recipe that gives depths (None: the surface only), adds the route below the surface
+    (``resolve_interior``).  ValueError for ``closed`` on a tabulated profile and for ``quadrature`` on
+    a power law with an exponent ``n`` below 1 (the transform quadrature (eq. 5) does not converge
+    for a tip of unbounded slope f' ~ r^(n-1)), in words a recipe check quotes after "method.".
     """
     if profile_kind not in KINDS:
         raise ValueError(f"profile kind {profile_kind!r} is not allowed: use one of {', '.join(map(repr, KINDS))}")
     if method not in METHODS:
         raise ValueError(f"method = {method!r} is not allowed: use one of {', '.join(map(repr, METHODS))}")
+    if group not in GROUPS:
+        raise ValueError(f"unknown variable group {group!r}; allowed: {', '.join(GROUPS)}")
     if method == "closed" and profile_kind == "tabulated":
-        raise ValueError("method = 'closed' has no closed form for a tabulated profile; use 'auto' or 'quadrature'")
+        raise ValueError("method = 'closed' has no closed form for profile = 'tabulated'; use 'auto' or 'quadrature'")
+    least = None if n is None else float(np.min(n))
+    if method == "quadrature" and profile_kind == "power_law" and least is not None and least < 1.0:
+        raise ValueError(f"method = 'quadrature' needs n in [1, 50] for profile = 'power_law' (a tip of finite "
+                         f"slope), got n = {least!r}; use method 'auto' for n < 1")
     if method == "quadrature" or profile_kind == "tabulated":
-        return QUADRATURE, _quadrature_accuracy(rtol)
-    return CLOSED, _CLOSED_ACCURACY
+        surface = QUADRATURE, _quadrature_accuracy(rtol)
+    else:
+        surface = CLOSED, _CLOSED_ACCURACY
+    if group == "surface" or k is None:
+        return surface
+    below = resolve_interior(k, rtol)
+    return f"{surface[0]}; below the surface: {below[0]}", f"{surface[1]}; below the surface: {below[1]}"
 
 
 #: below the surface (docs/theory/graded.md (G67)): k = 0 takes the axisymmetric family's interior

@@ -6,9 +6,9 @@ The one place that says which computation a method name selects (docs/theory/wav
   (W8) (non-periodic), its length chosen from rtol, (W22)-(W24);
 * ``auto`` -- the same, except that the pressure of a narrow periodic contact is taken from the
   cheaper non-periodic series where the periodic correction (W26) plus that series' error stays
-  within rtol (validity = 3);
+  within rtol (validity nonperiodic_series_within_rtol);
 * ``approximate_eq18`` / ``approximate_eq20`` -- the pressure only by the paper's approximate
-  formulas (W29), non-periodic only, inaccurate (validity = 2).
+  formulas (W29), non-periodic only, inaccurate (validity approximate_formula).
 
 Below the surface (``resolve(..., below=True)``), for every exact method:
 
@@ -18,8 +18,12 @@ Below the surface (``resolve(..., below=True)``), for every exact method:
   (W38) of the surface series' length (tail bounds unchanged); partial slip by the same potential
   at the stick width (W41), (W43).
 
-``resolve`` gives the route and accuracy strings written into every file's attributes; they must
-not change (the surface ones: recipes without z keep their strings).
+``resolve`` gives the route and accuracy strings written into the files' attributes, per group of
+variables: ``surface`` (pressure, u_z, the per-contact quantities, the shear traction) takes the
+surface route; ``stress`` (the field below the surface: stresses, dpdz, displacements, peaks) the
+route below the surface where the recipe gives z, which the approximate methods do not have.  The
+surface strings must not change (recipes without z keep their strings) but for the validity code
+they name.
 """
 from __future__ import annotations
 
@@ -27,8 +31,9 @@ from typing import Callable
 
 import numpy as np
 
+from ..flags import Validity
 from ..names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
-from .api import approximate_pressure_eq18, approximate_pressure_eq20
+from .contact import approximate_pressure_eq18, approximate_pressure_eq20
 
 #: the paper's approximate pressures (non-periodic, docs/theory/wavy.md (W29)): method name -> kernel
 #: kernel(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics) -> p/p*
@@ -44,7 +49,7 @@ METHODS: tuple[str, ...] = WAVY_METHODS
 _SERIES_ROUTE = ("closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or Bessel series "
                  "(non-periodic, eq. 14), length from rtol")
 _AUTO_ROUTE = ("; auto: pressure of a narrow periodic contact by the non-periodic series where the periodic "
-               "correction is below rtol (validity = 3)")
+               f"correction is below rtol (validity = {int(Validity.nonperiodic_series_within_rtol)})")
 
 
 _BELOW_ROUTE = ("; below the surface: complex potential of the surface tractions (docs/theory/wavy.md (W36)-(W41)), "
@@ -67,14 +72,37 @@ def substitutes(method: str) -> bool:
     return _known(method) == "auto"
 
 
-def resolve(method: str, rtol: float, *, below: bool = False) -> tuple[str, str]:
-    """(route, accuracy) of a method at tolerance rtol, as written into every field's attributes;
-    ``below``: the recipe asks for the field below the surface (exact methods only, (W36)-(W44))."""
+#: the groups of variables the table answers for
+GROUPS: tuple[str, ...] = ("surface", "stress")
+
+
+def resolve(method: str, rtol: float, *, below: bool = False, group: str = "stress", domain=None,
+            load: str | None = None) -> tuple[str, str]:
+    """(route, accuracy) of a method at tolerance rtol for a group of variables (``GROUPS``), as written
+    into their attributes; ``below``: the recipe asks for the field below the surface (exact methods
+    only, (W36)-(W44)), whose ``stress`` group takes the route below the surface.
+
+    The approximate methods exist for a non-periodic indenter under normal load only: ValueError for
+    one of them below the surface, with a ``domain`` other than "nonperiodic" (the recipe's domain, a
+    value or the values of a sweep; None: not said), or with a tangential ``load`` (the recipe's key of
+    it, None: none), in words a recipe check quotes after "method."."""
+    if group not in GROUPS:
+        raise ValueError(f"unknown variable group {group!r}; allowed: {', '.join(GROUPS)}")
+    if approximation(method) is not None:
+        if domain is not None and (not isinstance(domain, str) or domain != "nonperiodic"):
+            shown = domain if isinstance(domain, str) else [str(d) for d in domain]
+            raise ValueError(f"method = {method!r} is the paper's approximation for a non-periodic indenter; it "
+                             f"needs domain = 'nonperiodic', got domain = {shown!r}")
+        if load is not None:
+            raise ValueError(f"method = {method!r} is an approximate pressure; a tangential load ({load}) needs an "
+                             f"exact method ({', '.join(SERIES_METHODS)})")
     if below:
         route, accuracy = resolve(method, rtol)
         if approximation(method) is not None:
-            raise ValueError(f"method {method!r} replaces the pressure only; below the surface use "
-                             f"{', '.join(SERIES_METHODS)}")
+            raise ValueError(f"method = {method!r} is an approximate pressure; the field below the surface (z) "
+                             f"needs an exact method ({', '.join(SERIES_METHODS)})")
+        if group == "surface":
+            return route, accuracy
         return route + _BELOW_ROUTE, accuracy + _BELOW_ACCURACY
     if approximation(method) is not None:
         return (f"the paper's approximate {method.removeprefix('approximate_')} (inaccurate; for comparison only)",
