@@ -41,7 +41,7 @@ from ..invariants import principal_stresses, singular_limits, von_mises
 from ..names import PRINCIPAL, STRESS
 from . import history as hist
 from .displacement import NAMES as DISPLACEMENTS
-from .displacement import displacements, has_displacement_closed_form, tangential_displacements
+from .displacement import displacements, tangential_displacements
 from .interior import interior_dpdz, interior_stress
 from .interior_tangential import interior_dpdz_tangential, interior_stress_tangential
 from .loading import History, Monotonic
@@ -187,7 +187,8 @@ def _pipeline(names: list[str], profile: Profile, x, y, z, load, *, a, nu, mu, m
         out, route = _on_surface(rest, profile, x, y, case, load, method, rtol)
     moved = [n for n in names if n in DISPLACEMENTS]
     if moved:
-        out.update(_displacements(moved, profile, x, y, z, case, load, _dmethod(profile, method), rtol))
+        out.update(_displacements(moved, profile, x, y, z, case, load,
+                                   resolve(profile, method, rtol, group="displacement").kernel, rtol))
     return out, route
 
 
@@ -317,12 +318,6 @@ def _displacements(names, profile, x, y, z, case, load, method, rtol) -> dict[st
         for n in names:
             out[n][i] += term.w * part[n]
     return {n: v.reshape(shape) for n, v in out.items()}
-
-
-def _dmethod(profile: Profile, method: str) -> str:
-    """The displacements' method: "closed" where they have no closed form (cone, power laws other
-    than n = 2, tabulated profiles, whose stresses may have one) takes their 1-D route."""
-    return "auto" if method == "closed" and not has_displacement_closed_form(profile) else method
 
 
 # -- the point fields ------------------------------------------------------------------------------
