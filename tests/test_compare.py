@@ -17,7 +17,8 @@ import xarray as xr
 
 from stressfields import cli
 from stressfields.cli import main
-from stressfields.comparison import UNITS, CompareError, compare, summary
+from stressfields.api import compare
+from stressfields.comparison import UNITS, CompareError, summary
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "fe_hertz_mindlin"
 RECIPE, NODES = EXAMPLE / "recipe.toml", EXAMPLE / "nodes.csv"

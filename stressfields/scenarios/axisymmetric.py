@@ -710,7 +710,7 @@ def route_of(kind: str | None = None, default: str = PROFILE.default):
         floor = ax.tangential_floor(which, n) if tangential else ax.INTERIOR_RTOL
         if z is not None and np.any(np.asarray(z, dtype=float) > 0.0) and rtol < floor \
                 and ax.resolve_interior(which, method, floor, n, tangential=tangential).kernel != "closed":
-            from ..recipe import RecipeError     # the check does not see rtol; recipe imports this module
+            from ..errors import RecipeError     # the check does not see rtol
             load = " under tangential load" if floor > ax.INTERIOR_RTOL else ""
             raise RecipeError([f"method.rtol = {rtol:g} is below {floor:g}, the smallest the superposition "
                                f"below the surface (z > 0) reaches{load} for {which!r}; use rtol >= {floor:g}, "
