@@ -57,7 +57,7 @@ def recipe_path(name: str, folder: str | Path | None = None) -> Path:
 def make(name: str, target: Path, folder: str | Path | None = None, overwrite: bool = False) -> Path:
     """Generate dataset ``name`` of the suite into ``target`` (NetCDF, float64, uncompressed)."""
     from .api import generate
-    from .writers import write
+    from .output.formats import write
 
     return write(generate(recipe_path(name, folder)), target, overwrite=overwrite)
 
@@ -147,7 +147,7 @@ def register(folder: str | Path | None = None, version: str | None = None,
             name = path.stem
             target = Path(tmp) / f"{name}.nc"
             from .api import generate
-            from .writers import write
+            from .output.formats import write
 
             write(generate(path), target)
             content, values = file_hashes(target)
