@@ -154,3 +154,16 @@ def test_formats_import_the_shared_parts_never_the_table():
         assert "output.formats" not in GRAPH[name], name
         others = {t for t in GRAPH[name] if t.startswith("output.")} - shared
         assert others <= ({"output.netcdf"} if name == "output.parts" else set()), (name, others)
+
+
+def test_the_architecture_page_draws_the_same_table():
+    text = (PACKAGE.parent / "docs" / "architecture.md").read_text(encoding="utf-8")
+    rows = {line.split("|")[1].strip(): line for line in text.splitlines() if line.startswith("| ")}
+    for layer, prefixes in LAYERS:
+        assert layer in rows, layer
+        for prefix in filter(None, prefixes):
+            shown = prefix.replace(".", "/")
+            assert f"`{shown}`" in rows[layer] or f"`{shown}/`" in rows[layer], (layer, prefix)
+    order = [line.split("|")[1].strip() for line in text.splitlines() if line.split("|")[1:2]
+             and line.split("|")[1].strip() in dict(LAYERS)]
+    assert order == [layer for layer, _ in LAYERS]
