@@ -28,7 +28,7 @@ OPTIONS_ATTR = "stressfields_output"
 FLOAT32_NOTE = ("Stored as float32: add a rounding error of at most 6e-8 (2^-24) of |value| "
                 "(at most 1.4e-45 absolute below |value| = 1.2e-38).")
 #: the fill value of the ``fill`` option per float size: NetCDF's default fill values (netCDF4's
-#: ``default_fillvals["f4"]`` and ``["f8"]``, held equal by tests/test_writers.py), which readers
+#: ``default_fillvals["f4"]`` and ``["f8"]``, held equal by tests/test_front_door.py), which readers
 #: that mask (netCDF4, xarray) know; the Zarr writer stores the same
 FILL_VALUES = {4: 9.969209968386869e36, 8: 9.969209968386869e36}
 

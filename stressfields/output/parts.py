@@ -15,7 +15,7 @@ at any moment leaves no file at OUT.nc and a manifest listing only parts whose v
 ``resume=True`` reads every listed part back and checks each block against its CRC (a part that
 does not verify is computed again; a data.nc that was not completely laid out or cannot be opened is
 laid out anew and every part computed again), computes only the missing parts, then hashes the file
-(read back, `hashing.stamp`) and publishes it. The block list comes from the plan (the recipe's
+(read back, `netcdf.stamp`) and publishes it. The block list comes from the plan (the recipe's
 chunks), never from the manifest, and the manifest must match the plan (recipe hash, part
 boundaries) before anything is used. The published file's content hash equals that of an
 uninterrupted run: the values are the same bits and the metadata is the same.
