@@ -291,7 +291,7 @@ def _wavy(cfg: Config) -> dict:
     # a narrow periodic contact: method auto takes the cheaper non-periodic series wherever the
     # periodic correction (~0.41 (2a/lambda)^2 of the pressure) is below rtol and the contact has
     # enough points to pay for the test; Westergaard is the reference
-    x = np.linspace(-1.0, 1.0, max(cfg.points, wavy.api.SUBSTITUTE_MIN_POINTS))
+    x = np.linspace(-1.0, 1.0, max(cfg.points, wavy.contact.SUBSTITUTE_MIN_POINTS))
     h = 0.5 * np.pi * 1e-3
     west = 2 * np.cos(h * x) * np.sqrt(np.clip(np.sin(h) ** 2 - np.sin(h * x) ** 2, 0.0, None))
     variants = [(m, rt, lambda rt=rt, sub=sub: wavy.pressure(x, 1e-3, (0.5,), (1,), periodic=True, rtol=rt,
@@ -314,7 +314,8 @@ def _wavy_interior(cfg: Config) -> dict:
     out = {}
     for name, periodic in (("periodic", True), ("single indenter", False)):
         def run(rtol, periodic=periodic):
-            return wavy.api.subsurface(("sigma_zz",), x, z, 0.6, *table, periodic=periodic, rtol=rtol)[0]["sigma_zz"]
+            values = wavy.contact.subsurface(("sigma_zz",), x, z, 0.6, *table, periodic=periodic, rtol=rtol)[0]
+            return values["sigma_zz"]
 
         ref = run(REF_RTOL)
         variants = [(SERIES, rt, lambda rt=rt, run=run: run(rt)) for rt in RTOLS]

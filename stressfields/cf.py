@@ -46,11 +46,15 @@ ACCURACY_CONTRACT = """\
   displacements; for the graded family rtol is relative to |value|.
 - **`error_estimate`** (where a scenario offers it) is an upper bound of |error|, and
   **`converged`** is 1 exactly when `error_estimate` ≤ rtol · S.
-- **`validity`** is 0 where every value of the point meets the above. Any other code names the
-  true cause, as its `flag_meanings` say: ±inf only where the exact limit is infinite, NaN only
-  where the exact limit depends on the direction of approach, and family-specific causes such as a
-  series that did not converge or an approximate formula. A finite value with validity 0 is never
-  knowingly wrong.
+- **`validity`** (and `stress_validity`, `peak_validity`, `critical_validity`) is 0 where every
+  value of the point meets the above. Any other code names the true cause, the same in every
+  scenario, as its `flag_meanings` say: 1 ±inf where the exact limit is infinite; 2 NaN where the
+  exact limit depends on the direction of approach; 3 NaN below the surface at a point the
+  numerical route does not resolve; 4 a peak search that did not converge; then causes of one
+  family, never reused: 5 a series that did not meet rtol; 6 an approximate formula; 7 the
+  non-periodic series standing in for the periodic one within rtol; 8 partial slip whose stick
+  zone is not admissible (values NaN); 9 no critical point (values NaN). A finite value with
+  validity 0 is never knowingly wrong.
 - **Known limits**, stated rather than hidden: a value within a few units of rounding of an edge
   moves with that rounding (the field's own sensitivity, about eps·a/|r − a|: the graded shear
   traction within 1e-15 of the stick edge c/a, interior fields next to the edge ring); in-plane

@@ -33,6 +33,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from .physics.flags import Validity
 from .reading import open_dataset
 from .plotkeys import map_plane, plot_along, plot_kind
 
@@ -338,7 +339,7 @@ def _centre_pressure(ds, hold, across="x") -> float | None:
 def _mark(ax, ds, da, peak, p0, hold, across="x"):
     """The peak of the file: one marker, two at x = +-r under normal load (an axisymmetric field:
     the file gives r >= 0; one on a rho-z section), and its value and position in the legend."""
-    if peak["flag"] == 2 or not np.isfinite(peak["x"]):       # NaN: no point to mark
+    if peak["flag"] == Validity.undefined_direction_dependent_limit or not np.isfinite(peak["x"]):  # NaN: no point
         return
     load = max(_scalar(ds, k, hold, 0.0) for k in ("ux0", "fx", "tangential_force"))
     tangential = _scalar(ds, "mu", hold, 0.0) * load > 0.0
@@ -352,7 +353,7 @@ def _mark(ax, ds, da, peak, p0, hold, across="x"):
     else:
         scale = f" = {peak['value'] / p0:#.4g} p(0)" if p0 is not None else ""
         text = f"{da.name} peak {peak['value']:#.4g} {unit}{scale} at {where}"
-        if peak["flag"] == 4:
+        if peak["flag"] == Validity.search_not_converged:
             text += " (search not converged: best found)"
     ax.plot(xs, [peak["depth"]] * len(xs), ls="", marker="X", ms=8, color="red", mec="white", mew=0.8,
             label=text, clip_on=False, zorder=5)

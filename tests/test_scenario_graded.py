@@ -13,6 +13,7 @@ from scipy import integrate, optimize
 
 import stressfields as sf
 from stressfields import cli
+from stressfields.physics.flags import Validity
 from stressfields.physics.graded import normal as gno, tangential as gtg
 from stressfields.recipe import RecipeError
 
@@ -108,7 +109,8 @@ def test_tabulated_paraboloid_reproduces_closed_form():
     short = np.linspace(0.0, 1.2 * A_RAD, 7)
     tab = run({**adh, "profile": "tabulated", "profile_r": short.tolist(), "profile_f": (short ** 2 / (2 * R)).tolist(),
                "delta_gamma": 5.0}, names, scenario="graded_adhesive")
-    assert tab.critical_validity.values.tolist() == [1, 0]      # fixed load beyond the table, fixed grips inside
+    # fixed load beyond the table, fixed grips inside
+    assert tab.critical_validity.values.tolist() == [Validity.no_critical_point, Validity.within_stated_accuracy]
     assert np.isnan(tab.critical_force.sel(control="fixed_load"))
     assert np.isfinite(tab.critical_force.sel(control="fixed_grips"))
     # partial slip of a tabulated paraboloid, eqs. (49), (51)
@@ -176,7 +178,8 @@ def test_adhesive_quadrature_and_missing_critical_point():
     assert float(closed.critical_depth.sel(n=1.5, k=0.0, control="fixed_load")) == pytest.approx(0.0, abs=1e-18)
     # n = 0.2 <= (1-k)/2: no pull-off instability (Table 3) -> NaN, flagged
     low = run({**params, "n": [0.2, 1.5]}, scenario="graded_adhesive")
-    assert low.critical_radius.sel(n=0.2).isnull().all() and (low.critical_validity.sel(n=0.2) == 1).all()
+    assert low.critical_radius.sel(n=0.2).isnull().all()
+    assert (low.critical_validity.sel(n=0.2) == Validity.no_critical_point).all()
     assert (low.critical_validity.sel(n=1.5) == 0).all() and not low.depth.isnull().any()
 
 

@@ -24,6 +24,8 @@ from typing import TYPE_CHECKING, Any, Mapping
 
 import numpy as np
 
+from ..physics.flags import Validity as V
+from ..physics.flags import declare
 from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
 from .base import ARRAY, MAX_TABLE_SIZE, STR, Parameter, Scenario, Variable, table_step_problem
 
@@ -34,6 +36,11 @@ REFERENCE = ("E. Willert, F. Forsbach, V. L. Popov, Stress tensor and gradient o
              "in the contact plane of axisymmetric bodies under normal and tangential loading, "
              "Forschung im Ingenieurwesen (2020)")
 
+#: the codes of the field validity and of the peaks' (physics.flags)
+FIELD_CODES = (V.within_stated_accuracy, V.unbounded_at_singular_point, V.undefined_direction_dependent_limit,
+               V.not_resolved_below_the_surface)
+PEAK_CODES = (V.within_stated_accuracy, V.unbounded_at_singular_point, V.undefined_direction_dependent_limit,
+              V.search_not_converged)
 PM = "the mean contact pressure p_m = F_N/(pi a^2)"
 SPATIAL = ("y", "x")  # x last: a line along x is contiguous on disk
 DEPTH = ("z",) + SPATIAL  # z before y, x: a surface-parallel plane is contiguous on disk
@@ -163,16 +170,13 @@ def variables(case: tuple[str, ...], geometry: tuple[str, ...], spatial: tuple[s
                  comment=("Of the surface point (x, y) above the field point: independent of the depth z."
                           if deep else None)),
         Variable("validity", f"validity of the field values at the {'point' if deep else 'surface point'}",
-                 dtype="int8", dims=everything, flag_values=(0, 1, 2, 3),
-                 flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                                "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
-                 comment=f"1: a value is +-inf where the exact field is unbounded ({singular}"
-                         + ("; all at z = 0" if deep else "") + "); 2: a value is NaN where "
-                         "the exact limit depends on the direction of approach (r = 0 under gross slip of a "
-                         "cone). " + ("Below the surface (z > 0) every exact value is finite; 3: a value there is NaN "
-                                      "because the point lies closer than ~1e-100 a to the axis or the surface, "
-                                      "which the 1-D routes do not resolve. " if deep else "")
-                         + "Only the variables in this file are considered.",
+                 dtype="int8", dims=everything,
+                 **declare(FIELD_CODES, where={
+                     V.unbounded_at_singular_point: singular + ("; all at z = 0" if deep else ""),
+                     V.undefined_direction_dependent_limit: "r = 0 under gross slip of a cone",
+                     **({V.not_resolved_below_the_surface: "below the surface (z > 0) every exact value is finite; "
+                         "a NaN there lies closer than ~1e-100 a to the axis or the surface"} if deep else {})},
+                     note="Only the variables in this file are considered."),
                  always=True, label="validity of the field values"),
     ) + (tangential_loads(case) if tangential else ())
 
@@ -748,14 +752,12 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
         ]
     out.append(Variable(
         "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
-        flag_values=(0, 1, 2, 4),
-        flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                       "undefined_direction_dependent_limit", "search_not_converged"),
-        comment="0: the peaks are within the stated accuracy; 1: the field is unbounded at a surface singular "
-                "point (e.g. cone tip, flat-punch edge): the peaks are +inf there, depth 0; 2: the field is NaN at "
-                "a surface singular point (a direction-dependent limit): the peaks are NaN; 4: the refinement "
-                "did not converge or ended on the border of the search box (|x| = 2a, z = 3a): the values are "
-                "the best found, not the peaks. Written whenever a peak variable is.",
+        **declare(PEAK_CODES, where={
+            V.unbounded_at_singular_point: "at a surface singular point, e.g. cone tip, flat-punch edge: the peaks "
+                                           "are +inf there, depth 0",
+            V.undefined_direction_dependent_limit: "at a surface singular point: the peaks are NaN",
+            V.search_not_converged: "its box: |x| = 2a, z = 3a"},
+            note="Written whenever a peak variable is."),
         always=tuple(v.name for v in out), label="validity of the peaks"))
     return tuple(out)
 

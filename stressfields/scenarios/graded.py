@@ -19,6 +19,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..physics.flags import Validity as V
+from ..physics.flags import declare
 from ..physics.names import GRADED_METHODS
 from .base import ARRAY, MAX_TABLE_SIZE, STR, Parameter, Scenario, Variable, table_step_problem
 
@@ -82,6 +84,11 @@ STRESS_NAMES = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz", "von_mises", "si
                 "tau_max")
 _AT = "at (r, z) on a plane through the axis, r = rho a, depth z a (z = 0: the surface)"
 #: the short labels (files' long_name) of the stress variables below the surface
+#: the codes of the surface fields' validity, of the stresses', of the peaks' and at pull-off (physics.flags)
+SURFACE_CODES = (V.within_stated_accuracy, V.unbounded_at_singular_point, V.undefined_direction_dependent_limit)
+STRESS_CODES = SURFACE_CODES + (V.not_resolved_below_the_surface,)
+PEAK_CODES = SURFACE_CODES + (V.search_not_converged,)
+CRITICAL_CODES = (V.within_stated_accuracy, V.no_critical_point)
 STRESS_LABELS = {"sigma_1": "sigma_1 (largest)", "sigma_2": "sigma_2 (middle)", "sigma_3": "sigma_3 (smallest)",
                  "tau_max": "shear stress tau_max", "von_mises": "von Mises stress",
                  **{f"sigma_{c}": f"stress sigma_{c}" for c in ("rr", "tt", "zz", "rz", "xx", "yy", "xz")}}
@@ -100,13 +107,10 @@ def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, .
                           comment="tension positive, z into the body; docs/theory/graded.md section 10")
                  for n, m in what) + (
         Variable("stress_validity", "validity of the stress variables at the point", dims=dims, dtype="int8",
-                 flag_values=(0, 1, 2, 3), always=True,
-                 flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                                "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
-                 comment=f"1: a value is +-inf where the exact field is unbounded ({edge}the conical tip r = 0 at "
-                         "z = 0 and k = 0, where the pressure is unbounded); 2: a value is NaN where the limit "
-                         "depends on the direction of approach; 3: a NaN below the surface, at a point the "
-                         "quadrature does not resolve. Only the stress variables in this file are considered.",
+                 always=True, **declare(STRESS_CODES, where={
+                     V.unbounded_at_singular_point: f"{edge}the conical tip r = 0 at z = 0 and k = 0, where the "
+                                                    "pressure is unbounded"},
+                     note="Only the stress variables in this file are considered."),
                  label="validity of the stresses"),
     )
 
@@ -131,12 +135,11 @@ def peak_variables(case: tuple[str, ...]) -> tuple[Variable, ...]:
                          label=f"z/a of peak {name}")]
     out.append(Variable(
         "peak_validity", "validity of the peak variables of the case", dtype="int8", dims=case,
-        flag_values=(0, 1, 2, 4), flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                                                 "undefined_direction_dependent_limit", "search_not_converged"),
-        comment="0: the peaks are within the stated accuracy; 1: unbounded at a surface singular point (+inf "
-                "there, depth 0); 2: NaN at a surface singular point; 4: the refinement did not converge or "
-                "ended on the border of the search box (rho = 2 or z = 3a): the best found, not the peaks. "
-                "Written whenever a peak variable is.", always=tuple(v.name for v in out),
+        always=tuple(v.name for v in out), **declare(PEAK_CODES, where={
+            V.unbounded_at_singular_point: "at a surface singular point: +inf there, depth 0",
+            V.undefined_direction_dependent_limit: "at a surface singular point",
+            V.search_not_converged: "its box: rho = 2, z = 3a"},
+            note="Written whenever a peak variable is."),
         label="validity of the peaks"))
     return tuple(out)
 
@@ -200,8 +203,6 @@ GEOM = ("R", "tan_theta", "n", "A")          # swept geometry parameters, as dim
 
 #: the methods of the route table (physics.graded.routes.METHODS, one definition in physics.names)
 METHODS = GRADED_METHODS
-VALIDITY = dict(dtype="int8", flag_values=(0, 1, 2), always=True,
-                flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point", "undefined_at_singular_point"))
 
 
 def _f(p, key):
@@ -290,11 +291,14 @@ def _grid(values, names):
     return out
 
 
-def _validity(field_dims, fields, comment):
+def _validity(field_dims, fields, unbounded):
     """The validity flag of ``fields``: evaluated from them whether or not the file holds them, so that
-    it is the same requested alone, beside them, or beside other variables."""
-    return Variable("validity", f"validity of {' and '.join(fields)}", dims=field_dims, **VALIDITY,
-                    comment=f"{comment}. It flags {' and '.join(fields)}, evaluated whether or not the file holds them",
+    it is the same requested alone, beside them, or beside other variables; ``unbounded`` says where
+    they are +-inf."""
+    return Variable("validity", f"validity of {' and '.join(fields)}", dims=field_dims, dtype="int8", always=True,
+                    **declare(SURFACE_CODES, where={V.unbounded_at_singular_point: unbounded},
+                              note=f"It flags {' and '.join(fields)}, evaluated whether or not the file holds "
+                                   "them."),
                     label=f"validity of {' and '.join(fields)}")
 
 
@@ -320,7 +324,7 @@ N_VARS = (
              label="contact pressure p(r; a)"),
     Variable("uz", "normal surface displacement u_z(r; a), positive into the body", units="m",
              dims=("k", "contact_radius") + GEOM + ("rho",), label="displacement u_z(r; a)"),
-    _validity(N_DIMS + ("rho",), N_FLAGGED, "1: pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
+    _validity(N_DIMS + ("rho",), N_FLAGGED, "pressure = +inf at r = 0 for a profile with n + k <= 1 (e.g. the "
               "cone at k = 0), where the exact pressure is unbounded"),
 ) + stress_variables(N_DIMS + ("z", "rho"), adhesive=False) + peak_variables(N_DIMS)
 
@@ -387,12 +391,13 @@ AD_VARS = (
              label="pull-off depth d_c"),
     Variable("critical_force", "normal force F_c at pull-off (negative: tensile)", units="N", dims=CRIT_DIMS,
              label="pull-off force F_c"),
-    _validity(AD_DIMS + ("rho",), ("pressure",), "1: pressure = -inf at r = a (the adhesive edge singularity, "
+    _validity(AD_DIMS + ("rho",), ("pressure",), "pressure = -inf at r = a (the adhesive edge singularity, "
               "eq. 37) or +inf at r = 0 for a profile with n + k <= 1, where the exact pressure is unbounded"),
     Variable("critical_validity", "validity of the critical (pull-off) values", dims=CRIT_DIMS, dtype="int8",
-             flag_values=(0, 1), flag_meanings=("valid", "no_critical_point"), always=True,
-             comment="1: no critical point exists (power law with n <= (1-k)/2, Table 3) or it lies beyond the "
-                     "tabulated profile; the critical values are NaN there", label="validity at pull-off"),
+             always=True, **declare(CRITICAL_CODES, where={
+                 V.no_critical_point: "power law with n <= (1-k)/2, Table 3, or a critical point beyond the "
+                                      "tabulated profile"}),
+             label="validity at pull-off"),
 ) + stress_variables(AD_DIMS + ("z", "rho"), adhesive=True) + peak_variables(AD_DIMS)
 
 
@@ -408,7 +413,8 @@ def _evaluate_adhesive(names, p, options):
     out.update(_stress(names, p, options, delta_gamma=_f(p, "delta_gamma")))
     out.update(_peaks(names, p, options, delta_gamma=_f(p, "delta_gamma")))
     if "critical_validity" in names:
-        out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(1), np.int8(0))
+        out["critical_validity"] = np.where(np.isnan(out["critical_radius"]), np.int8(V.no_critical_point),
+                                            np.int8(V.within_stated_accuracy))
     if "validity" in names:
         out["validity"] = _flag(gp.adhesive_fields, gp.fields.ADHESIVE, ("pressure",), out, p, options, **values)
     return out
@@ -477,7 +483,7 @@ T_VARS = (
              comment="0: identical bodies, or nu = 1/(2+k) for every elastic body (sec. 5): the MDR solution is "
                      "exact; 1: the coupling is neglected (only with uncoupled_approximation = 'flag')",
                      label="normal-tangential coupling"),
-    _validity(T_FIELD, ("shear_traction",), "1: shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
+    _validity(T_FIELD, ("shear_traction",), "shear_traction = +inf at r = 0 in gross slip (fx = 1) for a profile "
               "with n + k <= 1; under partial slip the traction at r = 0 is finite (docs/theory/graded.md (G47)) "
               "and flagged 0"),
 ) + tuple(
@@ -491,12 +497,10 @@ T_VARS = (
                  ("tau_max", "maximum shear stress (sigma_1 - sigma_3)/2"))
 ) + (
     Variable("stress_validity", "validity of the stress variables at the point", dims=T_DEEP, dtype="int8",
-             flag_values=(0, 1, 2, 3), always=True,
-             flag_meanings=("within_stated_accuracy", "unbounded_at_singular_point",
-                            "undefined_direction_dependent_limit", "not_resolved_below_the_surface"),
-             comment="the codes of the axisymmetric family's validity: 1 +-inf where the exact field is unbounded "
-                     "(the conical tip r = 0 at z = 0), 2 NaN where the limit depends on the direction (the tip "
-                     "in gross slip), 3 NaN below the surface at a point the 1-D routes do not resolve",
+             always=True, **declare(STRESS_CODES, where={
+                 V.unbounded_at_singular_point: "the conical tip r = 0 at z = 0",
+                 V.undefined_direction_dependent_limit: "the tip in gross slip",
+                 V.not_resolved_below_the_surface: "the 1-D routes of the axisymmetric family"}),
              label="validity of the stresses"),
 )
 

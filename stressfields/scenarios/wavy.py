@@ -15,11 +15,11 @@ Methods: "series" is the exact series of the domain (length chosen from method.r
 n_terms / error_estimate / converged). "auto" (the default) is the same, except that for a periodic
 surface with a contact so narrow that the periodic correction to the pressure (about
 0.4 (2a/lambda_1)^2 of it, bounded per case in `periodic_correction`) plus the non-periodic series
-error stays below the tolerance, `pressure` is the cheaper non-periodic series (validity = 3).
-"approximate_eq18" / "approximate_eq20" replace `pressure`
+error stays below the tolerance, `pressure` is the cheaper non-periodic series (validity = 7,
+nonperiodic_series_within_rtol). "approximate_eq18" / "approximate_eq20" replace `pressure`
 (only) by the paper's approximate formulas, which are inaccurate: they exist so their error can be
-charted, are never the default, and are flagged validity = 2 at every point. What each method means
-is decided in one place, the physics route table (`physics/wavy/routes.py`); `evaluate` maps the
+charted, are never the default, and are flagged validity = 6 (approximate_formula) at every point.
+What each method means is decided in one place, the physics route table (`physics/wavy/routes.py`); `evaluate` maps the
 recipe onto one `physics.wavy.fields` call per domain and applies the physical scales.
 """
 from __future__ import annotations
@@ -29,6 +29,8 @@ from typing import Any, Mapping, Sequence
 
 import numpy as np
 
+from ..physics.flags import Validity as V
+from ..physics.flags import declare
 from ..physics.names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
 from .base import ARRAY, INT, STR, Options, Parameter, Scenario, Variable
 
@@ -98,23 +100,35 @@ _INTERIOR = ("Plane strain, from the complex potential of the surface tractions 
              "(W38). The mean pressure's k = 0 mode is kept (periodic: sigma_xx = sigma_zz = -p_inf as z -> inf, the "
              "limit of the sum over all periods; (W37)). At z = 0 sigma_zz = -pressure and sigma_xz = -shear_traction "
              "exactly. Within error_estimate (p*).")
-_DISPLACEMENT = ("Single indenter only (domain = 'nonperiodic'). Plane strain, from the potential G and its closed "
-                 "primitive Psi (docs/theory/wavy.md (W45)): 2 mu_s u_x = (1 - 2 nu) Im Psi + z Re G, 2 mu_s u_z = "
-                 "-2 (1 - nu) Re Psi - z Im G (mu_s the shear modulus), plus the shear traction's terms under a "
-                 "tangential load. Datum that of uz: log kernel ln|2 pi (x - xi)/lambda_1|, so u_z at z = 0 is uz; "
-                 "u_x is odd about x = 0 under normal load (at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) times the load "
-                 "right of x less that left of it). Within about 1e-13 Delta_1 in the tests.")
+_DISPLACEMENT = ("Plane strain, from the potential G and its primitive Psi (docs/theory/wavy.md (W45)-(W48)): "
+                 "2 mu_s u_x = (1 - 2 nu) Im Psi + z Re G, 2 mu_s u_z = -2 (1 - nu) Re Psi - z Im G (mu_s the shear "
+                 "modulus), plus the shear traction's terms under a tangential load. Single indenter: the closed "
+                 "primitive in omega. Periodic: the closed primitive near the surface and its Taylor series in w at "
+                 "depth, switched where the stresses switch (W39). Datum that of uz (non-periodic: log kernel "
+                 "ln|2 pi (x - xi)/lambda_1|; periodic: ln|2 sin(pi (x - xi)/lambda_1)|), so u_z at z = 0 is uz; u_x "
+                 "is odd about x = 0 under normal load (at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) times the load right "
+                 "of x less that left of it). Periodic: the mean pressure's k = 0 mode (sigma_xx = sigma_zz = -p_inf "
+                 "at depth) adds its uniform strain, u_x = -(1 - 2 nu) p_inf x/(2 mu_s) and u_z = -(1 - 2 nu) p_inf "
+                 "z/(2 mu_s): u_x is not periodic in x and u_z falls linearly with depth. Within about 1e-13 Delta_1 "
+                 "of independent quadratures in the tests (per-point bound <= 1e-12 Delta_1 up to 5 lambda_1 deep).")
 _PEAK = ("Grid of 41 x 41 points over 0 <= z <= 3a and 0 <= x <= 2a (both signs of x under a tangential load; at "
          "most half a period), refined by 16 zooms of a 9 x 9 grid (docs/theory/wavy.md (W44)); the value to the "
          "fields' accuracy, the position to about 1e-8 a (the field is flat at its peak).")
 _SERIES = ("the closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or the truncated Bessel "
            "series of eq. (14) (non-periodic) for this 2a/lambda_1 and harmonic count")
+#: the codes of the point validity and of the peaks' (physics.flags), and those the comments name
+APPROXIMATE, SUBSTITUTED, UNDEFINED = (int(V.approximate_formula), int(V.nonperiodic_series_within_rtol),
+                                       int(V.undefined_direction_dependent_limit))
+FIELD_CODES = (V.within_stated_accuracy, V.undefined_direction_dependent_limit, V.series_not_converged,
+               V.approximate_formula, V.nonperiodic_series_within_rtol, V.stick_zone_not_admissible)
+PEAK_CODES = (V.within_stated_accuracy, V.search_not_converged, V.stick_zone_not_admissible)
 VARIABLES = (
     Variable("pressure", "contact pressure p(x) (compressive positive; 0 outside the contact)",
              units_physical="Pa", scale=PSTAR, dims=SURFACE,
              comment="Exact series, length chosen from method.rtol (see n_terms, error_estimate). With "
                      "method approximate_eq18/eq20 it is instead the paper's approximate formula, which is "
-                     "NOT accurate (validity = 2); all other variables stay exact.", label="contact pressure p(x)"),
+                     f"NOT accurate (validity = {APPROXIMATE}); all other variables stay exact.",
+             label="contact pressure p(x)"),
     Variable("uz", "surface displacement u_z(x), positive into the body", units_physical="m",
              scale=DELTA_1, dims=SURFACE,
              comment="Datum (C = 0 in eq. 5): periodic domain, kernel ln|2 sin(pi (x - xi)/lambda_1)|, so u_z "
@@ -152,7 +166,7 @@ VARIABLES = (
                      "eqs. (1) and (2) differ by a smooth term), docs/theory/wavy.md (W26); +inf where that "
                      "interpolant is not resolved. "
                      "Method auto uses the non-periodic series for a periodic pressure where this plus the "
-                     "non-periodic series error is below the tolerance (validity = 3).",
+                     f"non-periodic series error is below the tolerance (validity = {SUBSTITUTED}).",
                      label="periodic correction"),
     Variable("error_estimate", "upper bound of the error of pressure, peak_pressure and max_pressure (only; "
              "not of uz) and, where the recipe gives z, of the stresses below the surface under normal load (under "
@@ -162,9 +176,9 @@ VARIABLES = (
              comment="In units of p* (docs/theory/wavy.md (W23), (W31)). It does not bound uz, whose scale is "
                      "Delta_1: inside the contact uz = u_z(0) - g(x) from closed forms; outside it is good to "
                      "about error_estimate/p* * (|x| - a) * 2 pi/lambda_1 * Delta_1 plus the gap quadrature "
-                     "(below 1e-13 Delta_1 in the tests). Where validity = 3 the pressure is instead within "
-                     "periodic_correction plus the non-periodic series error of the periodic one, together "
-                     "below method.rtol.", label="error bound"),
+                     f"(below 1e-13 Delta_1 in the tests). Where validity = {SUBSTITUTED} the pressure is "
+                     "instead within periodic_correction plus the non-periodic series error of the periodic "
+                     "one, together below method.rtol.", label="error bound"),
     Variable("converged", f"whether the pressure of {_SERIES} met method.rtol (error_estimate <= "
              "method.rtol * p*)", dtype="int8", dims=CASE, flag_values=(0, 1),
              flag_meanings=("not_converged", "converged"), always=True,
@@ -185,8 +199,8 @@ VARIABLES = (
              units_physical="Pa", scale=PSTAR, recorded_when=("z",), label="von Mises stress"),
     Variable("dpdz", "derivative of the hydrostatic pressure p_h = -trace(sigma)/3 with depth z (at z = 0: the "
              "limit z -> 0+)", units_physical="Pa/m", scale=PER_HALF_WIDTH, recorded_when=("z",),
-             comment="NaN (validity = 4) at z = 0 on a contact edge and, under partial slip, a stick edge, where the "
-                     "limit depends on the direction of approach. Not covered by error_estimate.",
+             comment=f"NaN (validity = {UNDEFINED}) at z = 0 on a contact edge and, under partial slip, a stick "
+                     "edge, where the limit depends on the direction of approach. Not covered by error_estimate.",
              label="dp_h/dz"),
     *(Variable(f"u_{c}", f"displacement u_{c} at depth z (z = 0: the surface; {what})", units_physical="m",
                scale=DELTA_1, comment=_DISPLACEMENT, label=f"displacement u_{c}")
@@ -209,25 +223,24 @@ VARIABLES = (
                                         ("_peak_depth", ": depth z of its largest value", "m", HALF_WIDTH,
                                          "z of peak"))),
     Variable("peak_validity", "validity of the peak variables of the case", dtype="int8", dims=LOADED + ("nu",),
-             flag_values=(0, 4), flag_meanings=("within_stated_accuracy", "search_not_converged"),
              always=tuple(f"{n}{s}" for n in ("tau_max", "von_mises") for s in ("_peak", "_peak_x", "_peak_depth")),
-             comment="4: the best point lies on the border of the search box (|x| = 2a or half a period, z = 3a): "
-                     "the values are the best found there, not necessarily the peak.",
+             **declare(PEAK_CODES, where={
+                 V.search_not_converged: "its box: |x| = 2a or half a period, z = 3a",
+                 V.stick_zone_not_admissible: "the peak variables are NaN"}),
              label="validity of the peaks"),
     Variable("validity", "validity of pressure and uz (and of the stresses below the surface) at the point",
-             dtype="int8", flag_values=(0, 1, 2, 3, 4, 5),
-             flag_meanings=("series_converged", "series_not_converged", "approximate_formula",
-                            "nonperiodic_series_within_rtol", "undefined_direction_dependent_limit",
-                            "stick_zone_not_admissible"), always=True,
-             comment="1: the series did not meet method.rtol (see converged, error_estimate); 2: method "
-                     "approximate_eq18/eq20, pressure is the paper's inaccurate approximation; 3: method auto, "
-                     "periodic domain: pressure is the non-periodic series, within method.rtol of the "
-                     "periodic one (see periodic_correction); uz and the per-case values stay periodic. Below the "
-                     "surface: 1 also where the stresses' bound exceeds method.rtol; 4: dpdz is NaN at z = 0 on a "
-                     "contact or stick edge (its limit depends on the direction of approach); 5: partial slip "
-                     "where the load P(c) is not increasing on [c, a], so the stick zone would not shrink "
-                     "monotonically under the growing tangential load and the superposition (W43) is not the "
-                     "solution.",
+             dtype="int8", always=True, **declare(FIELD_CODES, where={
+                 V.undefined_direction_dependent_limit: "dpdz at z = 0 on a contact or stick edge",
+                 V.series_not_converged: "see converged, error_estimate; below the surface also where the "
+                                         "stresses' bound exceeds method.rtol",
+                 V.approximate_formula: "method approximate_eq18/eq20: the pressure is the paper's approximation",
+                 V.nonperiodic_series_within_rtol: "method auto, periodic domain: the pressure, see "
+                                                   "periodic_correction; uz and the per-case values stay periodic",
+                 V.stick_zone_not_admissible: "flagged at every point of such a case, whichever variables the "
+                                              "file holds: the stresses, dpdz, shear_traction, the displacements "
+                                              "below the surface and the peaks are NaN there, stick_half_width is "
+                                              "the root of P(c) = (1 - fx) P(a) but not a stick zone, and pressure "
+                                              "and uz stay exact (uncoupled)"}),
              label="validity"),
 )
 #: the variables written when a recipe names none: those of the surface (the field below it joins when
@@ -325,10 +338,7 @@ def check(values: Mapping[str, Any], physical: bool, method: str) -> list[str]:
                         f"[1, {len(wns)}] (the rows of amplitudes/wavenumbers)")
     problems += _check_loads(values, physical, method)
     moved = [v for v in ("u_x", "u_z") if v in getattr(values, "variables", ())]
-    if moved and (isinstance(domain := values.get("domain"), np.ndarray) or domain != "nonperiodic"):
-        problems.append(f"output.variables: {', '.join(moved)} below the surface are produced for the single "
-                        f"indenter only; they need domain = 'nonperiodic', got domain = {_show(domain)}")
-    elif moved and method in WAVY_APPROXIMATE_METHODS:
+    if moved and method in WAVY_APPROXIMATE_METHODS:
         problems.append(f"method.method = {method!r} is an approximate pressure; {', '.join(moved)} need an exact "
                         f"method ({', '.join(WAVY_SERIES_METHODS)})")
     domain = values.get("domain")

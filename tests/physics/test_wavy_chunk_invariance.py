@@ -14,7 +14,8 @@ import xarray as xr
 
 import stressfields as sf
 from stressfields.physics import wavy
-from stressfields.physics.wavy import api
+from stressfields.physics.flags import Validity
+from stressfields.physics.wavy import contact
 
 F3 = {"amplitudes": [0.5, 0.01, 0.00075], "wavenumbers": [1, 11, 40]}
 # narrow to nearly closed contacts, both sides of where the periodic correction matters
@@ -68,20 +69,20 @@ def test_kernels_with_their_own_tables_are_bit_identical():
     """The per-contact kernels outside ``fields``: validity details, the shape of p, the gap."""
     kw = dict(**F3, n_harmonics=3, rtol=1e-12)
     for periodic in (True, False):
-        whole = api.contact_validity(A, periodic=periodic, **kw)
-        shape_whole = api.pressure_shape(np.array([0.0, 0.5, 1.0])[:, None], A[None, :], periodic=periodic, **kw)
-        gap_whole = api.separation(np.array([1.5, 3.0])[:, None], A[None, :], periodic=periodic, **kw)[0]
+        whole = contact.contact_validity(A, periodic=periodic, **kw)
+        shape_whole = contact.pressure_shape(np.array([0.0, 0.5, 1.0])[:, None], A[None, :], periodic=periodic, **kw)
+        gap_whole = contact.separation(np.array([1.5, 3.0])[:, None], A[None, :], periodic=periodic, **kw)[0]
         for j in (0, 3, 7):
-            one = api.contact_validity(A[j], periodic=periodic, **kw)
+            one = contact.contact_validity(A[j], periodic=periodic, **kw)
             for key, value in one.items():
                 assert np.array_equal(value, whole[key][j], equal_nan=True), key
-            phi = api.pressure_shape(np.array([0.0, 0.5, 1.0]), A[j], periodic=periodic, **kw)
+            phi = contact.pressure_shape(np.array([0.0, 0.5, 1.0]), A[j], periodic=periodic, **kw)
             assert np.array_equal(phi[0], shape_whole[0][:, j])
             assert np.array_equal(phi[1]["error_estimate"], shape_whole[1]["error_estimate"][:, j])
-            gap = api.separation(np.array([1.5, 3.0]), A[j], periodic=periodic, **kw)[0]
+            gap = contact.separation(np.array([1.5, 3.0]), A[j], periodic=periodic, **kw)[0]
             assert np.array_equal(gap, gap_whole[:, j])
-    bound = api.periodic_correction(A[:6], **kw)[0]
-    assert np.array_equal([api.periodic_correction(a, **kw)[0] for a in A[:6]], bound)
+    bound = contact.periodic_correction(A[:6], **kw)[0]
+    assert np.array_equal([contact.periodic_correction(a, **kw)[0] for a in A[:6]], bound)
 
 
 def test_contact_points_decide_the_substitution_not_the_call():
@@ -89,7 +90,7 @@ def test_contact_points_decide_the_substitution_not_the_call():
     with all of them (the default, counting the call's own points, would not)."""
     x = np.linspace(-1.0, 1.0, 7)
     p, info = wavy.pressure(x, 1e-4, **F3, periodic=True, rtol=1e-6, substitute=True,
-                            contact_points=api.SUBSTITUTE_MIN_POINTS)
+                            contact_points=contact.SUBSTITUTE_MIN_POINTS)
     assert info["substituted"].all()
     np.testing.assert_array_equal(p, wavy.pressure(x, 1e-4, **F3, periodic=False, rtol=1e-6)[0])
     assert not wavy.pressure(x, 1e-4, **F3, periodic=True, rtol=1e-6, substitute=True)[1]["substituted"].any()
@@ -138,14 +139,14 @@ def test_a_substituting_recipe_hashes_alike_however_chunked():
     """The case of test_scenario_wavy: 1e5 points per contact, where auto substitutes."""
     from stressfields.output import hashing
 
-    recipe = _recipe("auto", api.SUBSTITUTE_MIN_POINTS + 1)
+    recipe = _recipe("auto", contact.SUBSTITUTE_MIN_POINTS + 1)
     recipe["parameters"].update(a=[1e-4, 0.3], n_harmonics=3,
-                                x={"start": -1.0, "stop": 1.0, "num": api.SUBSTITUTE_MIN_POINTS + 1})
+                                x={"start": -1.0, "stop": 1.0, "num": contact.SUBSTITUTE_MIN_POINTS + 1})
     recipe["output"] = {"variables": ["pressure"]}
     hashes = set()
     for chunks in ({"x": -1, "a": -1}, {"x": 30_000}, {"a": 1, "x": 77_777}):
         ds = sf.generate(recipe, chunks=chunks).compute()
-        assert (ds.validity.sel(domain="periodic", a=1e-4) == 3).all()
-        assert not (ds.validity.sel(domain="periodic", a=0.3) == 3).any()
+        assert (ds.validity.sel(domain="periodic", a=1e-4) == Validity.nonperiodic_series_within_rtol).all()
+        assert not (ds.validity.sel(domain="periodic", a=0.3) == Validity.nonperiodic_series_within_rtol).any()
         hashes.add(hashing.content_hash(ds))
     assert len(hashes) == 1

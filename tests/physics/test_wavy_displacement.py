@@ -10,7 +10,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from stressfields.physics.wavy import api
+from stressfields.physics.wavy import contact
 
 F1 = ([0.5], [1])
 F2 = ([0.5, 0.01], [1, 11])
@@ -19,15 +19,15 @@ NU = 0.3
 
 
 def disp(x, z, w, profile=F2, nu=NU):
-    ux, uz, info = api.subsurface_displacement(np.asarray(x, float), np.asarray(z, float), w, *profile,
-                                               periodic=False, nu=nu)
+    ux, uz, info = contact.subsurface_displacement(np.asarray(x, float), np.asarray(z, float), w, *profile,
+                                                   periodic=False, nu=nu)
     return ux, uz, info["error_estimate"]
 
 
 def coefficients(w, profile):
     """The pressure p/p* = sum_m D_m sin((2m + 1) theta), x = a cos theta: the input of the quadrature
     (the surface series, proven by the surface tests), and the contact angle a (lambda_1 = 2 pi)."""
-    c = api._interior_ctx(w, *profile, False, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS)
+    c = contact._interior_ctx(w, *profile, False, None, contact.DEFAULT_RTOL, contact.DEFAULT_MAX_TERMS)
     K = int(c.table.K[c.row])
     return [mp.mpf(float(d)) for d in c.table.D[c.row, :K]], float(c.a_in)
 
@@ -84,7 +84,7 @@ def test_surface_uz_and_johnson_ux(w, profile):
     mp.mp.dps = 15
     t = np.array([-2.5, -1.0, -0.6, 0.0, 0.3, 0.999, 1.7])
     ux, uz, err = disp(t, 0.0, w, profile)
-    ref = api.displacement(t, w, *profile, periodic=False)[0]
+    ref = contact.displacement(t, w, *profile, periodic=False)[0]
     np.testing.assert_allclose(uz, ref, rtol=0, atol=1e-13)
     D, a = coefficients(w, profile)
 
@@ -109,21 +109,21 @@ def test_hooke_against_the_stresses_falls_as_h_squared(x, z):
     szz - nu (sxx + szz), (1 - nu)/a (du_x/dzt + du_z/dt) = sxz (p* units, t = x/a), with the product's stresses
     of ``subsurface``; central differences, so the residual falls as h^2 (by 16 at h/4) to rounding."""
     w, prof = 0.3, F2
-    s, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=False)
+    s, _ = contact.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=False)
     hooke_falls_as_h_squared(x, z, w, prof, s)
 
 
 def hooke_falls_as_h_squared(x, z, w, prof, s, mu=0.0, fx=0.0):
     """The residual of plane-strain Hooke's law (normalised: see the test above) between central differences
     of u at steps h = 4e-2 and 1e-2 and the stresses s; it must be visible and fall by about 16."""
-    a = float(api._interior_ctx(w, *prof, False, None, api.DEFAULT_RTOL, api.DEFAULT_MAX_TERMS).a_in)
+    a = float(contact._interior_ctx(w, *prof, False, None, contact.DEFAULT_RTOL, contact.DEFAULT_MAX_TERMS).a_in)
     sxx, szz, sxz = (float(s[k]) for k in ("sigma_xx", "sigma_zz", "sigma_xz"))
     tr = sxx + szz
 
     def residual(h):
         X = np.array([x + h, x - h, x, x])
         Z = np.array([z, z, z + h, z - h])
-        ux, uz, _ = api.subsurface_displacement(X, Z, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
+        ux, uz, _ = contact.subsurface_displacement(X, Z, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
         exx = (ux[0] - ux[1]) / (2 * h) / a
         ezz = (uz[2] - uz[3]) / (2 * h) / a
         gxz = ((ux[2] - ux[3]) + (uz[0] - uz[1])) / (2 * h) / a
@@ -159,12 +159,6 @@ def test_hertz_limit():
     np.testing.assert_allclose(uz, rz, rtol=0, atol=1e-9 * scale)
 
 
-def test_periodic_is_refused():
-    with pytest.raises(ValueError, match="single indenter"):
-        api.subsurface_displacement(0.0, 1.0, 0.3, *F2, periodic=True)
-
-
-
 def flamant_tangential(x, z, a, c, Da, Dc, mu, nu):
     """u_x/Delta_1, u_z/Delta_1 by quadrature of the tangential line-load displacements (plane strain, kernel
     units, log datum ln rho) over the traction q = mu [p(s; a) - p(s; c)]: per unit load along +x
@@ -197,12 +191,12 @@ def test_partial_slip_against_flamant_quadrature():
     quadrature of the tangential kernels over mu [p(s; a) - p(s; c)], c from the stick-width relation."""
     mp.mp.dps = 15
     w, prof, mu, fx = 0.3, F2, 0.3, 0.6
-    ratio = float(api.stick_half_width(w, *prof, fx, periodic=False)[0])
+    ratio = float(contact.stick_half_width(w, *prof, fx, periodic=False)[0])
     Da, a = coefficients(w, prof)
     Dc, c = coefficients(w * ratio, prof)
     t = np.array([0.0, 0.7, -0.95, 1.4, -0.3])
     zt = np.array([1e-9, 0.3, 0.05, 1.0, 2.5])
-    ux, uz, info = api.subsurface_displacement(t, zt, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
+    ux, uz, info = contact.subsurface_displacement(t, zt, w, *prof, periodic=False, nu=NU, mu=mu, fx=fx)
     nx, nz, _ = disp(t, zt, w, prof)
     for i in range(t.size):
         rx, rz = flamant_tangential(a * t[i], a * zt[i], a, c, Da, Dc, mu, NU)
@@ -215,5 +209,5 @@ def test_partial_slip_against_flamant_quadrature():
 def test_partial_slip_hooke(x, z):
     """Hooke's law against the product's stresses under the combined load, residual falling as h^2."""
     w, prof, mu, fx = 0.3, F2, 0.4, 0.5
-    s, _ = api.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=False, mu=mu, fx=fx)
+    s, _ = contact.subsurface(("sigma_xx", "sigma_zz", "sigma_xz"), x, z, w, *prof, periodic=False, mu=mu, fx=fx)
     hooke_falls_as_h_squared(x, z, w, prof, s, mu, fx)

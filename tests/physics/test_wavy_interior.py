@@ -12,7 +12,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 
-from stressfields.physics.wavy import api, interior
+from stressfields.physics.wavy import contact, interior
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "wavy_interior.json"
 STRESS = ("sigma_xx", "sigma_zz", "sigma_xz")
@@ -20,7 +20,7 @@ F2 = ([1.0, 0.02], [1, 11])
 
 
 def field(x, z, w, profile=F2, periodic=True, names=STRESS, **kw):
-    v, info = api.subsurface(names, x, z, w, *profile, periodic=periodic, **kw)
+    v, info = contact.subsurface(names, x, z, w, *profile, periodic=periodic, **kw)
     return v, info
 
 
@@ -122,7 +122,7 @@ def test_hertz_limit_is_mcewen():
     """One small non-periodic harmonic: the pressure differs from Hertz by 0.115 a^2 relatively (W28), below
     1e-12 at 2a/lambda_1 = 1e-6; the whole field then equals McEwen's to 1e-12 p0."""
     w = 1e-6
-    p0 = float(api.peak_pressure(w, [1.0], [1], periodic=False)[0])
+    p0 = float(contact.peak_pressure(w, [1.0], [1], periodic=False)[0])
     rng = np.random.default_rng(5)
     x, z = rng.uniform(-3, 3, 200), np.exp(rng.uniform(math.log(1e-6), math.log(5), 200))
     v, _ = field(x, z, w, ([1.0], [1]), periodic=False)
@@ -134,8 +134,8 @@ def test_hertz_limit_peak():
     """tau_max of the Hertz line contact: 0.300 p0 at z = 0.786 b on the axis (independently: the maximum
     of McEwen's (sigma_xx - sigma_zz)/2 on x = 0, by golden-section search)."""
     w = 1e-6
-    p0 = float(api.peak_pressure(w, [1.0], [1], periodic=False)[0])
-    pk = api.subsurface_peaks(w, [1.0], [1], periodic=False, nu=0.3)
+    p0 = float(contact.peak_pressure(w, [1.0], [1], periodic=False)[0])
+    pk = contact.subsurface_peaks(w, [1.0], [1], periodic=False, nu=0.3)
     gr = (math.sqrt(5) - 1) / 2
     lo, hi = 0.5, 1.0
     f = lambda z: 0.5 * (mcewen(np.array(0.0), np.array(z))[0] - mcewen(np.array(0.0), np.array(z))[1])
@@ -167,7 +167,7 @@ def test_surface_values_bit_for_bit_and_limit():
     """z = 0 gives the surface's own pressure to the bit; z = 1e-9 tends to it (sigma_zz -> -p, sigma_xz -> 0)."""
     for periodic in (True, False):
         x = np.linspace(-1.4, 1.4, 57)
-        p = api.pressure(x, 0.6, *F2, periodic=periodic)[0]
+        p = contact.pressure(x, 0.6, *F2, periodic=periodic)[0]
         v, _ = field(x, 0.0, 0.6, periodic=periodic)
         assert np.array_equal(v["sigma_zz"], 0.0 - p) and np.array_equal(v["sigma_xz"], np.zeros_like(x))
         assert np.array_equal(v["sigma_xx"], 0.0 - p)
@@ -180,7 +180,7 @@ def test_surface_values_bit_for_bit_and_limit():
 
 def test_mean_pressure_mode_at_depth():
     """Periodic: sigma_xx = sigma_zz = -p_inf far below (the k = 0 mode), sigma_xz -> 0; single indenter: all -> 0."""
-    pinf = float(api.mean_pressure(0.6, *F2, periodic=True))
+    pinf = float(contact.mean_pressure(0.6, *F2, periodic=True))
     v, _ = field(np.array([0.0, 1.0, 2.5]), 40.0, 0.6)
     np.testing.assert_allclose(v["sigma_xx"], -pinf, atol=1e-13)
     np.testing.assert_allclose(v["sigma_zz"], -pinf, atol=1e-13)
@@ -224,9 +224,9 @@ def cattaneo_2d(x, c):
 def test_partial_slip_hertz_limit_is_cattaneo():
     """a << lambda: c/a = sqrt(1 - Q/(mu P)) and the traction of Cattaneo's line contact."""
     w, mu, fx = 1e-6, 0.4, 0.64
-    ratio, ok = api.stick_half_width(w, [1.0], [1], fx, periodic=False)
+    ratio, ok = contact.stick_half_width(w, [1.0], [1], fx, periodic=False)
     assert ok and abs(float(ratio) - 0.6) <= 1e-9
-    p0 = float(api.peak_pressure(w, [1.0], [1], periodic=False)[0])
+    p0 = float(contact.peak_pressure(w, [1.0], [1], periodic=False)[0])
     x = np.linspace(-1.2, 1.2, 97)
     v, _ = field(x, 0.0, w, ([1.0], [1]), periodic=False, names=("shear_traction",), mu=mu, fx=fx)
     np.testing.assert_allclose(v["shear_traction"] / (mu * p0), cattaneo_2d(x, 0.6), atol=1e-9)
@@ -238,7 +238,7 @@ def test_partial_slip_interior_is_the_superposition_of_two_hertz_fields():
     closed form, r = sqrt(zeta - 1) sqrt(zeta + 1)), through the tangential Flamant kernels (W41) - checked
     against a direct quadrature of those kernels at a few points."""
     w, mu, fx = 1e-6, 0.3, 0.64
-    p0 = float(api.peak_pressure(w, [1.0], [1], periodic=False)[0])
+    p0 = float(contact.peak_pressure(w, [1.0], [1], periodic=False)[0])
     xs = np.array([0.2, -0.5, 0.9, 1.4])
     zs = np.array([0.1, 0.4, 0.8, 0.3])
     v, _ = field(xs, zs, w, ([1.0], [1]), periodic=False, mu=mu, fx=fx)
@@ -272,12 +272,12 @@ def test_stick_width_relation():
     """Q/(mu P) = 1 - P(c)/P(a) (Ciavarella, Jager) for both domains, against the closed load formulas."""
     for periodic in (True, False):
         for fx in (0.1, 0.5, 0.9):
-            r, ok = api.stick_half_width(0.4, *F2, fx, periodic=periodic)
-            Pa = api.mean_pressure(0.4, *F2, periodic=periodic)
-            Pc = api.mean_pressure(0.4 * float(r), *F2, periodic=periodic)
+            r, ok = contact.stick_half_width(0.4, *F2, fx, periodic=periodic)
+            Pa = contact.mean_pressure(0.4, *F2, periodic=periodic)
+            Pc = contact.mean_pressure(0.4 * float(r), *F2, periodic=periodic)
             assert ok and abs(1 - Pc / Pa - fx) <= 1e-12
-    assert float(api.stick_half_width(0.4, *F2, 0.0, periodic=True)[0]) == 1.0
-    assert float(api.stick_half_width(0.4, *F2, 1.0, periodic=True)[0]) == 0.0
+    assert float(contact.stick_half_width(0.4, *F2, 0.0, periodic=True)[0]) == 1.0
+    assert float(contact.stick_half_width(0.4, *F2, 1.0, periodic=True)[0]) == 0.0
 
 
 @pytest.mark.parametrize("periodic", [True, False])

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from stressfields.physics import wavy
-from stressfields.physics.wavy import api
+from stressfields.physics.wavy import contact
 
 F1 = {"amplitudes": [1.0], "wavenumbers": [1]}
 F3 = {"amplitudes": [0.5, 0.01, 0.00075], "wavenumbers": [1, 11, 40]}
@@ -50,7 +50,7 @@ def test_correction_grows_as_the_square_of_the_contact_width():
 @pytest.fixture
 def any_size(monkeypatch):
     """Substitute on every contact, however few points (the default needs 1e5 to pay off)."""
-    monkeypatch.setattr(api, "SUBSTITUTE_MIN_POINTS", 0)
+    monkeypatch.setattr(contact, "SUBSTITUTE_MIN_POINTS", 0)
 
 
 @pytest.mark.parametrize("rtol", [1e-4, 1e-6, 1e-8, 1e-12])
@@ -86,12 +86,12 @@ def test_no_substitution_unless_asked_or_for_a_single_indenter():
 
 def test_substitution_only_where_it_pays():
     """The test costs ~2 ms per contact: fewer points than SUBSTITUTE_MIN_POINTS keep the periodic series."""
-    few = np.linspace(-1.0, 1.0, api.SUBSTITUTE_MIN_POINTS - 1)
-    many = np.linspace(-1.0, 1.0, api.SUBSTITUTE_MIN_POINTS)
+    few = np.linspace(-1.0, 1.0, contact.SUBSTITUTE_MIN_POINTS - 1)
+    many = np.linspace(-1.0, 1.0, contact.SUBSTITUTE_MIN_POINTS)
     assert not wavy.pressure(few, 1e-4, **F1, periodic=True, rtol=1e-6, substitute=True)[1]["substituted"].any()
     p, info = wavy.pressure(many, 1e-4, **F1, periodic=True, rtol=1e-6, substitute=True)
     assert info["substituted"].all()
     assert np.max(np.abs(p - westergaard(many, 1e-4))) <= info["error_estimate"][0]
     # counted per contact: outside points do not count
-    wide = np.concatenate([few, np.linspace(1.5, 2.0, api.SUBSTITUTE_MIN_POINTS)])
+    wide = np.concatenate([few, np.linspace(1.5, 2.0, contact.SUBSTITUTE_MIN_POINTS)])
     assert not wavy.pressure(wide, 1e-4, **F1, periodic=True, rtol=1e-6, substitute=True)[1]["substituted"].any()

@@ -27,7 +27,7 @@ from typing import Callable, Iterable
 import numpy as np
 
 from ..flags import quiet
-from ..flags import validity_flag
+from ..flags import Validity, validity_flag
 from ..invariants import principal_stresses, singular_limits, von_mises
 # the stress components and principal stresses are defined in ``physics.names``: the scenario
 # declarations read them without importing the kernels
@@ -45,7 +45,7 @@ __all__ = ["STRESS", "PRINCIPAL", "INVARIANTS", "FIELDS", "HISTORY_LOADS", "HIST
            "contact_radius", "validity_flag"]
 
 #: validity code of a point below the surface that the 1-D routes do not resolve
-UNRESOLVED = 3
+UNRESOLVED = Validity.not_resolved_below_the_surface
 #: the invariants of the stress tensor: von Mises (A60), principal stresses, tau_max = (sigma_1 - sigma_3)/2
 INVARIANTS = ("von_mises",) + PRINCIPAL + ("tau_max",)
 #: fields of a point (they need x and y, and z below the surface)

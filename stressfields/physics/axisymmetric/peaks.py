@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..flags import Validity
 from .fields import fields
 from .profiles import Profile
 from .surface import stick_radius
@@ -51,8 +52,10 @@ __all__ = ["PEAKS", "FINITE", "UNBOUNDED", "UNDEFINED", "NOT_CONVERGED", "peaks"
 #: the keys of ``peaks``
 PEAKS = ("tau_max_peak", "tau_max_peak_r", "tau_max_peak_depth",
          "von_mises_peak", "von_mises_peak_r", "von_mises_peak_depth", "peak_validity")
-#: peak_validity codes: the numbers of the family's validity flag, and 4 after them
-FINITE, UNBOUNDED, UNDEFINED, NOT_CONVERGED = 0, 1, 2, 4
+#: peak_validity codes, from the product's table (physics.flags)
+FINITE, UNBOUNDED, UNDEFINED, NOT_CONVERGED = (Validity.within_stated_accuracy, Validity.unbounded_at_singular_point,
+                                               Validity.undefined_direction_dependent_limit,
+                                               Validity.search_not_converged)
 _INVARIANTS = ("tau_max", "von_mises")
 #: the search box in units of a: every peak of the family lies well inside it
 _X_MAX, _Z_MAX = 2.0, 3.0

@@ -481,7 +481,7 @@ class Tabulated(Profile):
         object.__setattr__(self, "_coef", np.stack([alpha, beta, gamma]))
         # the spline's own coefficients about each piece's lower knot (piece 0 about r = 0): the
         # global ones above grow like the third derivative times r^2 and cancel to 5e-12 of max|f'| on
-        # noisy tables (measured on the 40-point test profile of tests/physics/test_tabulated_fast.py)
+        # noisy tables (measured on the 40-point test profile of tests/physics/test_axisymmetric_tabulated_abel_sums.py)
         local = np.stack([b, c, d])
         local[:, 0] = alpha[0], 0.5 * beta[0], gamma[0] / 3.0
         object.__setattr__(self, "_local", local)

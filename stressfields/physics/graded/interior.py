@@ -23,6 +23,7 @@ from typing import Sequence
 
 import numpy as np
 
+from ..flags import Validity
 from ..invariants import principal_stresses, singular_limits, von_mises
 from ..names import PRINCIPAL
 from . import adhesive, holl
@@ -38,7 +39,7 @@ STRESS = ("sigma_rr", "sigma_tt", "sigma_zz", "sigma_rz")
 #: everything ``interior_fields`` computes
 INTERIOR = STRESS + ("von_mises",) + PRINCIPAL + ("tau_max",)
 #: validity code of a point below the surface that the routes do not resolve (as the axisymmetric family)
-UNRESOLVED = 3
+UNRESOLVED = Validity.not_resolved_below_the_surface
 #: nu is Holl's ratio 1/(2+k) to this relative tolerance (as ``material.tangential_decoupled``)
 _HOLL_RTOL = 1e-9
 SUPPORTED = ("below the surface the graded family solves k = 0 (any nu) and k > 0 with nu = 1/(2+k) "

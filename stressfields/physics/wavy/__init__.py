@@ -3,13 +3,13 @@
 Tsukanov, I. Yu. (2018) "Partial contact of a rigid multisinusoidal wavy surface with an elastic
 half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467; equations, stable
 forms and errata in docs/theory/wavy.md (W1)-(W44).  Pure NumPy/SciPy: arrays in,
-arrays out, no state.  See ``api`` for the common arguments and normalisation
+arrays out, no state.  See ``contact`` for the common arguments and normalisation
 (p* = pi E* Delta_1/lambda_1, E* = E/(1 - nu^2); lengths in Delta_1; x in units of a).
 ``fields`` computes every quantity of the scenario in one call; ``routes`` is the one table of
 what the methods (``auto``, ``series``, the paper's approximations) mean.
 """
 
-from .api import (
+from .contact import (
     DEFAULT_MAX_TERMS,
     DEFAULT_RTOL,
     approach,

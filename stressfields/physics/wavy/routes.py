@@ -6,9 +6,9 @@ The one place that says which computation a method name selects (docs/theory/wav
   (W8) (non-periodic), its length chosen from rtol, (W22)-(W24);
 * ``auto`` -- the same, except that the pressure of a narrow periodic contact is taken from the
   cheaper non-periodic series where the periodic correction (W26) plus that series' error stays
-  within rtol (validity = 3);
+  within rtol (validity nonperiodic_series_within_rtol);
 * ``approximate_eq18`` / ``approximate_eq20`` -- the pressure only by the paper's approximate
-  formulas (W29), non-periodic only, inaccurate (validity = 2).
+  formulas (W29), non-periodic only, inaccurate (validity approximate_formula).
 
 Below the surface (``resolve(..., below=True)``), for every exact method:
 
@@ -19,7 +19,7 @@ Below the surface (``resolve(..., below=True)``), for every exact method:
   at the stick width (W41), (W43).
 
 ``resolve`` gives the route and accuracy strings written into every file's attributes; they must
-not change (the surface ones: recipes without z keep their strings).
+not change (the surface ones: recipes without z keep their strings) but for the validity code they name.
 """
 from __future__ import annotations
 
@@ -27,8 +27,9 @@ from typing import Callable
 
 import numpy as np
 
+from ..flags import Validity
 from ..names import WAVY_APPROXIMATE_METHODS, WAVY_METHODS, WAVY_SERIES_METHODS
-from .api import approximate_pressure_eq18, approximate_pressure_eq20
+from .contact import approximate_pressure_eq18, approximate_pressure_eq20
 
 #: the paper's approximate pressures (non-periodic, docs/theory/wavy.md (W29)): method name -> kernel
 #: kernel(x_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, n_harmonics) -> p/p*
@@ -44,7 +45,7 @@ METHODS: tuple[str, ...] = WAVY_METHODS
 _SERIES_ROUTE = ("closed Legendre-cosine form (periodic, docs/theory/wavy.md (W30)) or Bessel series "
                  "(non-periodic, eq. 14), length from rtol")
 _AUTO_ROUTE = ("; auto: pressure of a narrow periodic contact by the non-periodic series where the periodic "
-               "correction is below rtol (validity = 3)")
+               f"correction is below rtol (validity = {int(Validity.nonperiodic_series_within_rtol)})")
 
 
 _BELOW_ROUTE = ("; below the surface: complex potential of the surface tractions (docs/theory/wavy.md (W36)-(W41)), "

@@ -130,7 +130,7 @@ def test_the_cache_is_bounded():
 def test_fast_table_against_the_exact_sums(shape, monkeypatch):
     """Within 64 ulps of max |g'| (max |g''|) of the exact sums (A103) at points spread over the
     table and next to every knot; the table built from the exact sums is held to its own 8 ulps
-    target (plus their rounding) by tests/physics/test_tabulated_fast.py.  Measured: 17-34 ulps."""
+    target (plus their rounding) by tests/physics/test_axisymmetric_tabulated_abel_sums.py.  Measured: 17-34 ulps."""
     r, f = _hyperboloid(200) if shape == "uniform" else _measured_like()
     knots = r[1:-1]
     x = np.sort(np.concatenate([np.linspace(1e-3, r[-1], 701), knots * (1 + 1e-9), knots * (1 - 1e-9)]))

@@ -1,4 +1,4 @@
-"""Public kernels of the wavy (multisinusoidal) contact family.
+"""The wavy (multisinusoidal) contact: its pressure, displacements, per-contact quantities and the field below.
 
 Tsukanov, I. Yu. (2018) "Partial contact of a rigid multisinusoidal wavy surface with an elastic
 half-plane", Advances in Tribology 2018, 8431467, doi:10.1155/2018/8431467, with the equations,
@@ -462,8 +462,6 @@ def _approximate(x_over_a, two_a, amplitudes, wavenumbers, n_harmonics, eq, n_te
 #: the fields of ``subsurface`` (the stresses in p*, dpdz in p*/a, shear_traction q/p* at the surface)
 SUBSURFACE = ("sigma_xx", "sigma_yy", "sigma_zz", "sigma_xz", "sigma_1", "sigma_2", "sigma_3", "tau_max",
               "von_mises", "dpdz", "shear_traction")
-#: validity codes of the interior (docs/theory/wavy.md (W42)), beside those of (W25)
-DPDZ_UNDEFINED, STICK_NOT_ADMISSIBLE = 4, 5
 #: grid of the stick-width search (W43): P(c) tabulated on this many widths before bisection
 _STICK_GRID = 256
 
@@ -546,6 +544,14 @@ def _points(c, x_over_a, z_over_a, nu, mu, fx):
     shape = np.broadcast_shapes(t.shape, zt.shape, np.shape(c.row), nu.shape, mu.shape, fx.shape)
     flat = [np.broadcast_to(v, shape).reshape(-1) for v in (t, zt, nu, mu, fx, c.row, c.a_in, c.N_in)]
     return shape, flat
+
+
+def _not_solved(values, where):
+    """``values`` NaN ``where`` the superposition (W43) is not the solution (a stick zone that is not
+    admissible): no value of the loading is known there, and a finite one would look plausible."""
+    if not np.any(where):
+        return values
+    return {k: (None if v is None else np.where(where, np.nan, v)) for k, v in values.items()}
 
 
 def _stick(a, N, mu, fx, amplitudes, wavenumbers, periodic):
@@ -639,6 +645,7 @@ def subsurface(names, x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenu
     syy, s1, s2, s3, tau, vm = _interior.plane_strain_invariants(sxx, szz, sxz, nu)
     values = dict(sigma_xx=sxx, sigma_yy=syy, sigma_zz=szz, sigma_xz=sxz, sigma_1=s1, sigma_2=s2, sigma_3=s3,
                   tau_max=tau, von_mises=vm, dpdz=dpdz, shear_traction=q)
+    values = _not_solved(values, shearing & ~admissible)
     info = {"error_estimate": err, "normal_error": normal_err, "converged": conv, "stick_over_a": ratio,
             "stick_admissible": admissible | ~shearing, "dpdz_undefined": undefined}
     shaped = lambda v: np.asarray(v).reshape(shape)
@@ -657,16 +664,29 @@ def subsurface_peaks(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
     """Per case, the largest tau_max and von Mises over 0 <= z/a <= 3 and |x|/a <= 2 (periodic: at most
     half a period; x >= 0 under normal load, by symmetry) and where they sit, docs/theory/wavy.md (W44).
 
-    Returns {"tau_max": (value, x/a, z/a), "von_mises": (...), "on_border": bool} per case (shape of
-    broadcast(two_a_over_lambda1, n_harmonics, nu, mu, fx)); on_border: the best point of a search
-    lies on the border of the box (|x| at its limit or z/a = 3), so it may not be the peak."""
+    Returns {"tau_max": (value, x/a, z/a), "von_mises": (...), "on_border": bool, "stick_admissible": bool}
+    per case (shape of broadcast(two_a_over_lambda1, n_harmonics, nu, mu, fx)); on_border: the best point
+    of a search lies on the border of the box (|x| at its limit or z/a = 3), so it may not be the peak;
+    where the stick zone is not admissible (``stick_half_width``) the field is not known and the peaks
+    are NaN, unsearched."""
     w = np.asarray(two_a_over_lambda1, dtype=float)
     N = np.asarray(len(np.atleast_1d(wavenumbers)) if n_harmonics is None else n_harmonics)
     shape = np.broadcast_shapes(w.shape, N.shape, np.shape(nu), np.shape(mu), np.shape(fx))
     cases = [np.broadcast_to(v, shape).reshape(-1) for v in (w, N, nu, mu, fx)]
     out = {k: (np.zeros(shape), np.zeros(shape), np.zeros(shape)) for k in ("tau_max", "von_mises")}
     border = np.zeros(shape, dtype=bool)
+    shearing = cases[3] * cases[4] > 0.0
+    admissible = np.ones(shape, dtype=bool)
+    if shearing.any():
+        admissible.reshape(-1)[shearing] = stick_half_width(cases[0][shearing], amplitudes, wavenumbers,
+                                                            cases[4][shearing], periodic=periodic,
+                                                            n_harmonics=cases[1][shearing])[1]
     for i, (wi, Ni, nui, mui, fxi) in enumerate(zip(*cases)):
+        flat = np.unravel_index(i, shape)
+        if not admissible[flat]:
+            for arr in (*out["tau_max"], *out["von_mises"]):
+                arr[flat] = np.nan
+            continue
         xmax = min(2.0, 1.0 / wi) if periodic else 2.0
         xmin = -xmax if mui * fxi > 0.0 else 0.0
         for name in ("tau_max", "von_mises"):
@@ -689,34 +709,40 @@ def subsurface_peaks(two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: b
                 if v[k] >= best:
                     x0, z0, best = gx[k[0]], gz[k[1]], v[k]
                 hx, hz = hx / 4.0, hz / 4.0
-            flat = np.unravel_index(i, shape)
             for arr, val in zip(out[name], (best, x0, z0)):
                 arr[flat] = val
             border[flat] |= (abs(x0) >= xmax) or (z0 >= PEAK_DEPTH)
-    return {**out, "on_border": border}
+    return {**out, "on_border": border, "stick_admissible": admissible}
 
 
 def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, wavenumbers, *, periodic: bool,
                             n_harmonics=None, nu=0.3, mu=0.0, fx=0.0, rtol=DEFAULT_RTOL,
                             max_terms=DEFAULT_MAX_TERMS):
-    """u_x/Delta_1 and u_z/Delta_1 at (x/a, z/a), z >= 0 (u_z positive into the body, u_x along +x), single
-    indenter, docs/theory/wavy.md (W45); returns (u_x, u_z, info).
+    """u_x/Delta_1 and u_z/Delta_1 at (x/a, z/a), z >= 0 (u_z positive into the body, u_x along +x),
+    docs/theory/wavy.md (W45)-(W48); returns (u_x, u_z, info).
 
     Normal load, and under a tangential load fx = Q/(mu P) with friction coefficient mu the displacements of
     the shear traction q = mu [p(x; a) - p(x; c)] of ``subsurface`` added (uncoupled).  Datum: that of the
     surface ``displacement`` (the log kernel ln|x - xi| in the lambda_1 = 2 pi unit), which u_z of the normal
     load reproduces at z = 0 and u_x of the shear traction likewise; the other component is odd about the
     load's centre: at z = 0 Johnson's (1 - 2 nu)/(4 mu_s) [int_x^inf - int_-inf^x] of the traction (mu_s the
-    shear modulus).  info: "error_estimate" a bound per point (Delta_1 units), "converged" as the stresses'.
-    The periodic surface is not produced: no closed primitive of its potential is implemented (see (W45))."""
-    if periodic:
-        raise ValueError("the displacements below the surface are produced for the single indenter "
-                         "(periodic = False) only")
-    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, False, n_harmonics, rtol, max_terms)
+    shear modulus); single indenter by the closed primitive in omega (W45).  Periodic surface (W46)-(W48): the
+    same relations with the periodic primitive, whose datum is that of the periodic uz (kernel
+    ln|2 sin((x - xi)/2)|: u_z at z = 0 is uz, of zero mean over a period); the mean pressure's k = 0 mode adds
+    the uniform strain of sigma_xx = sigma_zz = -p_inf, so u_x carries -(1 - 2 nu) p_inf x/(2 mu_s) and is not
+    periodic.  info: "error_estimate" a bound per point (Delta_1 units),
+    "converged" as the stresses'."""
+    c = _interior_ctx(two_a_over_lambda1, amplitudes, wavenumbers, periodic, n_harmonics, rtol, max_terms)
     shape, (t, zt, nu, mu, fx, row, a, N) = _points(c, x_over_a, z_over_a, nu, mu, fx)
     zk = a * zt
 
     def primitive(ctx, rows, tt, zz, aa):
+        if ctx.periodic:
+            if ctx.interior is None:
+                ctx.interior = _interior.PeriodicPotential(ctx.table, ctx.dr, ctx.n, ctx.rtol)
+            with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+                Psi, G, e = ctx.interior.primitive(rows, tt, zz)
+            return G, Psi, e, ctx.interior.converged[rows].copy()
         with np.errstate(invalid="ignore", divide="ignore"):
             G, _, eG, _ = _interior.nonperiodic_potential(ctx.table, rows, tt, zz)
         Psi, ePsi = _interior.nonperiodic_primitive(ctx.table, rows, tt, zz, aa)
@@ -725,13 +751,13 @@ def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, 
 
     G, Psi, err, conv = primitive(c, row, t, zt, a)
     ux, uz = _interior.normal_displacements(Psi, G, zk, nu)
-    shearing, ratio, admissible, sliding = _stick(a, N, mu, fx, amplitudes, wavenumbers, False)
+    shearing, ratio, admissible, sliding = _stick(a, N, mu, fx, amplitudes, wavenumbers, periodic)
     if shearing.any():
         # the shear traction's potential and primitive: mu times those of p(x; a) less p(x; c) (W43)
         H, Phi = mu * G, mu * Psi
         err = err + np.where(shearing, mu * err, 0.0)
         if sliding.any():
-            cc = _interior_ctx(a[sliding] / np.pi * ratio[sliding], amplitudes, wavenumbers, False, N[sliding],
+            cc = _interior_ctx(a[sliding] / np.pi * ratio[sliding], amplitudes, wavenumbers, periodic, N[sliding],
                                rtol, max_terms)
             k = 1.0 / ratio[sliding]
             Gc, Pc, ec, okc = primitive(cc, cc.row, t[sliding] * k, zt[sliding] * k, cc.a_in)
@@ -742,6 +768,7 @@ def subsurface_displacement(x_over_a, z_over_a, two_a_over_lambda1, amplitudes, 
         tx, tz = _interior.shear_displacements(Phi, H, zk, nu)
         ux = np.where(shearing, ux + tx, ux)
         uz = np.where(shearing, uz + tz, uz)
+    ux, uz = _not_solved(dict(ux=ux, uz=uz), shearing & ~admissible).values()
     info = {"error_estimate": err, "converged": conv, "stick_admissible": admissible | ~shearing}
     shaped = lambda v: np.asarray(v).reshape(shape)
     return shaped(ux), shaped(uz), {k: shaped(v) for k, v in info.items()}

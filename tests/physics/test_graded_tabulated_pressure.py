@@ -5,7 +5,7 @@ far part the panel nodes themselves. Held against scipy quad of the defining int
 exact g' (G14) for a hyperboloid at 25 and 200 samples, at r/a from the centre to 1 - 1e-9, k from
 1e-6 to 0.9 and rtol = 1e-6 ... 1e-12. The work is counted in g' evaluations: fixed per (a, k),
 independent of the number of points, linear in the knots. (The power-law closed forms, with 41 and
-401 knots: tests/physics/test_graded_tabulated_fast2.py.)
+401 knots: tests/physics/test_graded_tabulated_block_tree.py.)
 """
 
 import numpy as np
@@ -15,7 +15,7 @@ from scipy.integrate import quad
 from stressfields.physics.graded import normal as N
 from stressfields.physics.graded.material import c_N_star
 
-from test_graded_tabulated_fast2 import A, KS, MAT, RTOLS, hyperboloid, rel
+from test_graded_tabulated_block_tree import A, KS, MAT, RTOLS, hyperboloid, rel
 
 # reference quadratures of the defining integral take ~15 s of set-up: run by .ci/run with the
 # other slow tests, not by the Quick start
