@@ -7,16 +7,15 @@ recipe's ``[output]`` dtype, compression and nonfinite, under the caller's overr
 `generate` carries its recipe's output options, so ``sf.write(sf.generate(recipe), path)`` stores
 what the recipe asks, as ``stressfields run recipe -o path`` does.
 
-xarray, dask and the recipe checker are imported by the functions that use them, so that
-`scenarios` and `describe` (and `stressfields list`/`describe`) load only the scenario declarations.
+Everything is imported by the functions that use it: `scenarios` and `describe` (and `stressfields
+list`/`describe`) load only the scenario declarations, and `--help` (which quotes `PARTS_ABOVE`)
+not even those.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Mapping, Sequence
-
-from .scenarios import REGISTRY, summaries
 
 if TYPE_CHECKING:
     import xarray as xr
@@ -95,6 +94,8 @@ def scenarios() -> dict[str, str]:
     dict of str to str
         Scenario names with their one-line descriptions.
     """
+    from .scenarios import summaries
+
     return summaries()
 
 
@@ -116,6 +117,7 @@ def describe(name: str) -> str:
     KeyError
         For an unknown name, listing the known ones.
     """
+    from .scenarios import REGISTRY
     from .schema import scenario_text
 
     if name not in REGISTRY:
