@@ -13,8 +13,9 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 HEAVY = ("xarray", "dask", "distributed", "scipy")
-#: the physics modules a command that computes nothing may load: the shared names, nothing of a family
-LIGHT_PHYSICS = ("stressfields.physics", "stressfields.physics.names")
+#: the physics modules a command that computes nothing may load: the shared names and the one validity
+#: code table (NumPy only; the declarations name their codes from it), nothing of a family
+LIGHT_PHYSICS = ("stressfields.physics", "stressfields.physics.names", "stressfields.physics.flags")
 
 PROBE = """
 import contextlib, io, sys
