@@ -17,9 +17,10 @@ import warnings
 
 import numpy as np
 import xarray as xr
-from dask.array import PerformanceWarning
 
 from . import cf
+# a sweep of at least PARALLEL_ABOVE points gets at least MIN_TASKS chunks where it can (output/compute.py
+# says why; resumable parts are cut by the same two figures)
 from .output.compute import MIN_TASKS, PARALLEL_ABOVE
 from .recipe import POINT, Recipe, RecipeError, chunk_problems
 from .scenarios.base import ARRAY
@@ -28,11 +29,12 @@ from .scenarios.base import ARRAY
 #: 3.66-3.75 s against 3.74-3.91 s in 1e6-point ones (system time 0.70-0.87 s against 1.15-1.29 s:
 #: the kernels' temporaries; three runs each), 4.00-4.17 s in 2.5e5-point ones, 4.3-5.5 s in 6e4
 TARGET_CHUNK_POINTS = 500_000
-#: a sweep of at least PARALLEL_ABOVE points gets at least MIN_TASKS chunks where it can
-#: (output/compute.py says why; resumable parts are cut by the same two figures)
 
 
-def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
+def build(recipe: Recipe, chunks: dict[str, int] | None = None, *, evaluate_group=None) -> xr.Dataset:
+    """The recipe's dataset, lazy: one dask task per chunk and group of variables. ``evaluate_group``
+    (the signature of `_evaluate_group`) replaces the lazy evaluation of each group: `compare`
+    computes its reference at once, in NumPy, without importing dask.array."""
     scen = recipe.scenario
     physical = recipe.physical
     sizes = recipe.shape
@@ -68,7 +70,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None) -> xr.Dataset:
 
     route = scen.route(recipe.values, recipe.method, recipe.rtol) if scen.route else None
     for dims, names in _groups(recipe).items():
-        outputs = _evaluate_group(recipe, dims, names, fixed, options, chunking)
+        outputs = (evaluate_group or _evaluate_group)(recipe, dims, names, fixed, options, chunking)
         for name, arr in zip(names, outputs):
             var = scen.variable(name)
             attrs = cf.variable_attrs(var, physical)
@@ -189,6 +191,8 @@ def _inputs(recipe, dims, names, chunking) -> dict[str, xr.DataArray]:
 
 
 def _evaluate_group(recipe, dims, names, fixed, options, chunking):
+    from dask.array import PerformanceWarning
+
     scen = recipe.scenario
     dtypes = [np.dtype(scen.variable(n).dtype) for n in names]
     inputs = _inputs(recipe, dims, names, chunking) if dims else {}

@@ -278,8 +278,8 @@ def _compare(args) -> int:
     from .fe.command import run
 
     _no_stdout(args.report_dir)
-    with _local_scheduler("threads"):       # the local threads, without importing dask.distributed
-        return run(args, plotting=not args.no_plot and _has_matplotlib())
+    # no dask scheduler: the reference is computed now and the report is in memory (comparison.py)
+    return run(args, plotting=not args.no_plot and _has_matplotlib())
 
 
 def _no_stdout(output: Path | None) -> None:

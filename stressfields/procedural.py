@@ -85,13 +85,39 @@ class Batches:
         recipe = self.recipe
         params = {k: v for k, v in recipe.values.items() if k not in recipe.points}
         params.update({k: np.ascontiguousarray(inputs[:, i]) for i, k in enumerate(self.input_names)})
-        options = {"method": recipe.method, "rtol": recipe.rtol, "physical": recipe.physical, "sweep": params}
-        with np.errstate(all="ignore"):        # singular points give inf/NaN on purpose, flagged in validity
-            result = recipe.scenario.evaluate(list(self.target_names), params, options)
+        result = evaluate(recipe, self.target_names, params)
         out = np.empty((inputs.shape[0], len(self.target_names)))
         for j, name in enumerate(self.target_names):
             out[:, j] = np.broadcast_to(np.asarray(result[name], dtype=np.float64), (inputs.shape[0],))
         return out
+
+
+def evaluate(recipe, names, params: Mapping, sweep: Mapping | None = None) -> dict[str, np.ndarray]:
+    """The scenario's values of ``names`` at ``params`` (the recipe's fixed values and arrays of
+    points), computed now by its kernels: no xarray, no dask. The one call of a scenario's evaluate
+    outside the lazy dataset (`build`): `sf.batches` and `compare`'s reference both come here.
+
+    Parameters
+    ----------
+    recipe : Recipe
+        The checked recipe: its scenario, method, rtol and units mode.
+    names : sequence of str
+        The variables wanted.
+    params : Mapping
+        Parameter values; a per-point parameter as a 1-D array (every array of one length).
+    sweep : Mapping, optional
+        The values of the whole sweep the points belong to (default: ``params``): a kernel whose choice
+        of route depends on the sweep (wavy ``auto``) then chooses as for the whole recipe.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        The values by name, as the scenario gives them (a per-case value may be a scalar).
+    """
+    options = {"method": recipe.method, "rtol": recipe.rtol, "physical": recipe.physical,
+               "sweep": params if sweep is None else sweep}
+    with np.errstate(all="ignore"):        # singular points give inf/NaN on purpose, flagged in validity
+        return recipe.scenario.evaluate(list(names), params, options)
 
 
 def batches(recipe: str | Path | Mapping, batch_size: int, seed: int) -> Batches:

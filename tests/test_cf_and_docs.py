@@ -5,6 +5,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 import xarray as xr
 
@@ -182,6 +183,68 @@ def test_paraview_draws_planar_bounds_with_depth_downwards(tmp_path):
     assert done.returncode == 0, done.stderr
     # spherical mode (the default) would put x, y on the unit sphere: bounds within [-1, 1]
     assert json.loads(done.stdout) == pytest.approx([-1.5, 1.5, 0.0, 0.5, -0.5, 0.0])
+
+
+#: VTK's CF reader in a process of its own (see above): per file and set of dimensions, what it builds
+VTK_PROBE = """
+import json, sys, vtk
+vtk.vtkObject.GlobalWarningDisplayOff()
+out = []
+for path, dims in json.loads(sys.stdin.read()):
+    reader = vtk.vtkNetCDFCFReader()
+    reader.SetFileName(path)
+    reader.SphericalCoordinatesOff()
+    reader.UpdateMetaData()
+    offered = [reader.GetVariableDimensions().GetValue(i)
+               for i in range(reader.GetVariableDimensions().GetNumberOfValues())]
+    if dims is not None:
+        reader.SetDimensions(dims)
+    reader.Update()
+    grid = reader.GetOutput()
+    data = grid.GetPointData()
+    out.append([path, dims, dims is None or dims in offered, grid.GetNumberOfPoints(), grid.GetNumberOfCells(),
+                sorted(data.GetArrayName(i) for i in range(data.GetNumberOfArrays()))])
+print(json.dumps(out))
+"""
+
+
+def test_paraview_opens_every_recipe_output_with_its_fields_on_their_grids(outputs):
+    """VTK's NetCDF CF reader (ParaView's) opens every recipe's output (as ParaView first shows it, and
+    on each set of dimensions the fields lie on) without error: a grid of as many points as the
+    dimensions give (the product of their sizes) and cells (the product of size - 1 over the
+    dimensions longer than one; a single point is one vertex), every field on those dimensions a point
+    array of it."""
+    pytest.importorskip("vtk")
+    import netCDF4
+
+    jobs, expected = [], {}
+    for recipe in RECIPES:
+        path = str(outputs / f"{recipe.stem}.nc")
+        jobs.append([path, None])
+        with netCDF4.Dataset(path) as nc:
+            fields = {}
+            for name, var in nc.variables.items():
+                if var.dimensions and name not in nc.dimensions and var.dtype != np.dtype("S1"):
+                    fields.setdefault(var.dimensions, []).append(name)
+            for dims, names in fields.items():
+                sizes = [len(nc.dimensions[d]) for d in dims]
+                key = "(" + ", ".join(dims) + ")"
+                cells = int(np.prod([n - 1 for n in sizes if n > 1])) if max(sizes) > 1 else 1
+                expected[(path, key)] = (int(np.prod(sizes)), cells, sorted(names))
+                jobs.append([path, key])
+    done = subprocess.run([sys.executable, "-c", VTK_PROBE], input=json.dumps(jobs), capture_output=True, text=True,
+                          timeout=300)
+    assert done.returncode == 0, done.stderr
+    results = json.loads(done.stdout)
+    assert len(results) == len(jobs)
+    for path, dims, offered, points, cells, arrays in results:
+        if dims is None:            # as ParaView first shows the file: some grid, read without error
+            assert points >= 1, path
+            continue
+        want_points, want_cells, names = expected[(path, dims)]
+        assert offered, (path, dims)
+        assert (points, cells) == (want_points, want_cells), (path, dims)
+        assert set(names) <= set(arrays), (path, dims, sorted(set(names) - set(arrays)))
 
 
 def test_schema_file_is_in_sync():

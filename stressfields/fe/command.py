@@ -35,7 +35,7 @@ def options_from(args) -> Options:
 def run(args, plotting: bool) -> int:
     """The command: the report folder is checked before anything is computed and published whole
     (`comparison.publish_report`); ``plotting``: the PNGs are drawn (not --no-plot, and matplotlib is
-    installed: cli.py decides, and runs this on dask's local threads)."""
+    installed: cli.py decides)."""
     from ..comparison import check_report_folder, publish_report
     from ..textfiles import write_text
     from ..output.formats import write

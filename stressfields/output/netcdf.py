@@ -40,11 +40,14 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     tmp = str(temporary(target, ".tmp"))
     with removed_on_failure(tmp, target):
         encoding = encodings(ds)
-        if local(scheduler):
-            # laid out with fill mode off, then every block written once (`store`)
+        lazy = sources(ds, encoding)
+        if not lazy or local(scheduler):
+            # laid out with fill mode off, then every block written once (`store`); a dataset in
+            # memory (a comparison's) is written whole by the layout, without importing dask.array
             layout(ds, tmp)
-            with open_values(tmp) as nc:
-                store(nc, sources(ds, encoding), scheduler, progress)
+            if lazy:
+                with open_values(tmp) as nc:
+                    store(nc, lazy, scheduler, progress)
         else:
             # on a cluster xarray's writer: its locks reach the workers
             compute(ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding, compute=False), progress=progress,
