@@ -3,7 +3,9 @@
     import stressfields as sf
     ds = sf.generate("recipes/cone_fig2_sigma_xx.toml")   # or a dict with the same keys; lazy xr.Dataset
     sf.write(ds, "cone.nc")                         # atomic write (.nc NetCDF, .zarr Zarr; parts=, resume=;
-                                                    # dtype="float32", compression=4, nonfinite="nan")
+                                                    # dtype="float32", compression=4, nonfinite="nan"; by
+                                                    # default the recipe's [output] options)
+    sf.run("recipe.toml", "cone.nc")                # `stressfields run recipe.toml -o cone.nc`: checked first
     sf.open_dataset("cone.nc")                      # reopen lazily, choice dimensions labelled by name
     sf.estimate("recipes/cone_fig2_sigma_xx.toml")        # dimensions, points, bytes, seconds before running
     sf.scenarios()                                  # names with one-line descriptions
@@ -20,28 +22,27 @@ from __future__ import annotations
 import importlib
 from typing import TYPE_CHECKING, Any
 
-#: the one source of the version (pyproject.toml reads it from here)
-__version__ = "0.1.0"
-
 from .errors import OutputError  # noqa: E402
+from .version import __version__  # noqa: E402 (the one source: version.py)
 
 #: public name -> the module that defines it
-_LAZY = {"generate": "api", "estimate": "api", "scenarios": "api", "describe": "api", "RecipeError": "recipe",
+_LAZY = {"generate": "api", "estimate": "api", "scenarios": "api", "describe": "api", "RecipeError": "errors",
          "examples": "api", "example": "api", "open_example": "api", "open_mfdataset": "reading",
-         "write": "writers", "to_netcdf": "writers", "export": "writers", "output_options": "writers",
-         "open_dataset": "reading", "compare": "comparison", "batches": "procedural"}
+         "write": "output.formats", "to_netcdf": "output.formats", "export": "output.formats",
+         "output_options": "output.options", "run": "api",
+         "open_dataset": "reading", "compare": "api", "batches": "procedural"}
 
-__all__ = ["generate", "write", "to_netcdf", "export", "open_dataset", "open_mfdataset", "output_options", "estimate",
-           "scenarios", "describe", "compare", "batches", "examples", "example", "open_example", "RecipeError",
-           "OutputError", "__version__"]
+__all__ = ["generate", "run", "write", "to_netcdf", "export", "open_dataset", "open_mfdataset", "output_options",
+           "estimate", "scenarios", "describe", "compare", "batches", "examples", "example", "open_example",
+           "RecipeError", "OutputError", "__version__"]
 
 if TYPE_CHECKING:       # what the lazy names are, for type checkers and IDEs
-    from .api import describe, estimate, example, examples, generate, open_example, scenarios
-    from .comparison import compare
+    from .api import compare, describe, estimate, example, examples, generate, open_example, run, scenarios
     from .procedural import batches
     from .reading import open_dataset, open_mfdataset
-    from .recipe import RecipeError
-    from .writers import export, output_options, to_netcdf, write
+    from .errors import RecipeError
+    from .output.formats import export, to_netcdf, write
+    from .output.options import output_options
 
 
 def __getattr__(name: str) -> Any:
@@ -50,7 +51,7 @@ def __getattr__(name: str) -> Any:
         globals()[name] = value
         return value
     try:
-        return importlib.import_module(f".{name}", __name__)     # sf.writers, sf.cli, ...
+        return importlib.import_module(f".{name}", __name__)     # sf.output, sf.cli, ...
     except ModuleNotFoundError as exc:
         if exc.name != f"{__name__}.{name}":
             raise

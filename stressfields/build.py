@@ -19,6 +19,9 @@ import numpy as np
 import xarray as xr
 
 from . import cf
+# a sweep of at least PARALLEL_ABOVE points gets at least MIN_TASKS chunks where it can (output/compute.py
+# says why; resumable parts are cut by the same two figures)
+from .output.compute import MIN_TASKS, PARALLEL_ABOVE
 from .recipe import POINT, Recipe, RecipeError, chunk_problems
 from .scenarios.base import ARRAY
 
@@ -26,10 +29,6 @@ from .scenarios.base import ARRAY
 #: 3.66-3.75 s against 3.74-3.91 s in 1e6-point ones (system time 0.70-0.87 s against 1.15-1.29 s:
 #: the kernels' temporaries; three runs each), 4.00-4.17 s in 2.5e5-point ones, 4.3-5.5 s in 6e4
 TARGET_CHUNK_POINTS = 500_000
-#: a sweep of at least this many points gets at least MIN_TASKS chunks where it can, so that each of
-#: two cores has work and a second task to take while the first one's block is being written
-PARALLEL_ABOVE = 200_000
-MIN_TASKS = 4
 
 
 def build(recipe: Recipe, chunks: dict[str, int] | None = None, *, evaluate_group=None) -> xr.Dataset:
@@ -54,7 +53,7 @@ def build(recipe: Recipe, chunks: dict[str, int] | None = None, *, evaluate_grou
             coords[par.name] = xr.Variable((POINT,), value, cf.coord_attrs(par, physical))
         elif par.name in recipe.swept and par.choices:
             # labelled by name in memory (.sel(control="fixed_load"), legends); the writers store
-            # it as the CF flag coordinate (writers.encode_choices), sf.open_dataset reads it back
+            # it as the CF flag coordinate (output.form.encode_choices), sf.open_dataset reads it back
             coords[par.name] = xr.Variable((par.name,), np.asarray(value, dtype=object),
                                            cf.coord_attrs(par, physical))
         elif par.name in recipe.swept:

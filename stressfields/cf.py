@@ -20,7 +20,7 @@ import time
 
 import numpy as np
 
-from . import __version__
+from .version import __version__
 from .scenarios.base import ARRAY, Parameter, Variable
 
 CONVENTIONS = "CF-1.8, ACDD-1.3"
@@ -82,7 +82,7 @@ def history(action: str) -> str:
 
 def discovery_attrs(summary: str, scenario: str) -> dict[str, str]:
     """The ACDD-1.3 discovery attributes of a file (``id``, the content hash, is added when the file is
-    stamped, `hashing.stamp`); ``date_created`` and ``history`` are left out of the content hash."""
+    stamped, `output.netcdf.stamp`); ``date_created`` and ``history`` are left out of the content hash."""
     return {"summary": summary, "keywords": f"{KEYWORDS}, {scenario}", "license": LICENSE, **CREATOR,
             "date_created": stamp(), "product_version": __version__,
             "processing_level": "model results: closed forms, 1-D quadratures and series (no grids)"}

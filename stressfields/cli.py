@@ -30,16 +30,14 @@ from pathlib import Path
 # value the user set is kept.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
-from . import __version__
-from .errors import OutputError
-from .options import DTYPES, NONFINITE
+from .errors import OutputError, RecipeError
+from .output.options import DTYPES, NONFINITE
+from .version import __version__
 
 #: the unit conversions of `compare` (comparison.UNITS, held equal by tests/test_compare.py)
 COMPARE_UNITS = ("Pa", "kPa", "MPa", "GPa", "m", "mm", "um", "N", "1")
 
 LOCAL_SCHEDULERS = ("threads", "synchronous", "processes")
-#: sweeps larger than this are written in resumable parts
-PARTS_ABOVE = 50_000_000
 
 
 #: signals that end a run like Ctrl-C (schedulers, `timeout` and `docker stop` send TERM; a closed
@@ -95,12 +93,10 @@ class UsageError(ValueError):
 
 
 def _user_error(exc: Exception) -> bool:
-    """A problem of the input, said in one line: a RecipeError can only come from a loaded recipe.py,
-    so the check does not import it (and with it the writers) for the commands that need neither."""
-    recipe = sys.modules.get(f"{__package__}.recipe")
+    """A problem of the input, said in one line: a CompareError can only come from a loaded
+    comparison.py, so the check does not import it (and with it xarray) for the commands that need none."""
     compare = sys.modules.get(f"{__package__}.comparison")
-    return isinstance(exc, (OutputError, UsageError)) or (
-        recipe is not None and isinstance(exc, recipe.RecipeError)) or (
+    return isinstance(exc, (OutputError, RecipeError, UsageError)) or (
         compare is not None and isinstance(exc, compare.CompareError))
 
 
@@ -125,6 +121,8 @@ def _terminate(signum, frame):
 
 
 def _parser() -> argparse.ArgumentParser:
+    from .api import PARTS_ABOVE
+
     p = argparse.ArgumentParser(prog="stressfields", description="Reference datasets of contact-mechanics "
                                 "fields: recipe (TOML) -> CF NetCDF.")
     p.add_argument("--version", action="version", version=f"stressfields {__version__}")
@@ -298,7 +296,7 @@ def _has_matplotlib() -> bool:
 
 
 def _export(args) -> int:
-    from .writers import export
+    from .output.formats import export
 
     _no_stdout(args.output)
     if not args.store.exists():
@@ -318,7 +316,7 @@ def _export(args) -> int:
 
 
 def _hash(args) -> int:
-    from .hashing import file_hash
+    from .output.formats import file_hash
 
     bad, records = 0, []
     for path in args.files:
@@ -406,9 +404,9 @@ def _keep_freed_memory() -> None:
 
 
 def _run(args) -> int:
-    from .build import build, check_chunks, default_chunks, estimate
-    from .recipe import load
-    from .writers import check_name, check_space, check_target, format_for, output_options, space_needed, write
+    """Parse, then hand every recipe to the front door (`api.plan`: recipe, chunking, target, output
+    options, parts), check the free space of them all (`api.check_space`), and write them one by one."""
+    from .api import check_space, plan
 
     _no_stdout(args.output)
     if args.output and len(args.recipes) > 1:
@@ -419,44 +417,31 @@ def _run(args) -> int:
     if args.plot and not args.dry_run:
         _check_plotting()
     out_dir_ready = args.output is not None or _check_out_dir(args.out_dir)
-    jobs = []
+    runs = []
     for path in args.recipes:      # validate everything before computing anything
-        recipe = load(path, allow_read=args.allow_read)
-        bad = set(chunks) - set(recipe.dims)
-        if bad:
-            raise UsageError(f"--chunks: {', '.join(sorted(bad))} is not a swept dimension of {path} "
-                             f"(swept: {', '.join(recipe.dims) or 'none'})")
-        wanted = {**recipe.chunks, **chunks}
-        check_chunks(recipe.shape, wanted, default_chunks(recipe.shape, wanted))   # task count, before any work
         target = args.output or args.out_dir / f"{'stdin' if str(path) == '-' else path.stem}.nc"
-        if args.scheduler == "processes" and format_for(target).name == "netcdf":
+        run = plan(path, target, chunks=chunks, overwrite=args.overwrite, parts=args.parts, resume=args.resume,
+                   dtype=args.dtype, compression=args.compression, nonfinite=args.nonfinite,
+                   allow_read=args.allow_read, check_target=not args.dry_run and out_dir_ready,
+                   folder_made_later=not args.dry_run and not out_dir_ready)
+        if args.scheduler == "processes" and run.format == "netcdf":
             # the HDF5 writer's handle and lock cannot be shared with other processes (dask fails
             # pickling the lock after computing); Zarr stores take writes from any process
             raise UsageError(f"--scheduler processes writes Zarr stores only, not {target}; use the "
                              "default threads for NetCDF, or -o OUT.zarr")
-        if args.dry_run:
-            pass
-        elif out_dir_ready:
-            check_target(target, overwrite=args.overwrite, resume=args.resume, parts=args.parts)
-        else:
-            check_name(target, _existing_ancestor(args.out_dir))
-        given = {"dtype": args.dtype, "compression": args.compression, "nonfinite": args.nonfinite}
-        storage = {**recipe.storage, **{k: v for k, v in given.items() if v is not None}}
-        jobs.append((path, recipe, target, storage))
+        runs.append((path, run))
     if args.dry_run:
-        for path, recipe, target, _ in jobs:
-            e = estimate(recipe, chunks)
+        for path, run in runs:
+            e, recipe = run.estimate(), run.recipe
             dims = " x ".join(f"{d}={n}" for d, n in e["dims"].items()) or "scalar"
-            print(f"{path} -> {target}\n  scenario {recipe.scenario.name}: {dims} = {e['points']:,} points; "
+            print(f"{path} -> {run.target}\n  scenario {recipe.scenario.name}: {dims} = {e['points']:,} points; "
                   f"variables: {', '.join(recipe.variables)}\n  output about {e['bytes'] / 1e6:,.1f} MB; "
                   f"chunks {e['chunks']}; estimated {e['seconds']:,.1f} s here (from {e['sample_points']:,} "
                   "points)")
         return 0
     # every dataset (lazy) before any work: the free space is checked against all outputs at once
-    datasets = [build(recipe, chunks) for _, recipe, _, _ in jobs]
     if args.space_check:
-        check_space([(target, space_needed(ds, target, output_options(**storage), args.resume))
-                     for ds, (_, _, target, storage) in zip(datasets, jobs)])
+        check_space([run for _, run in runs])
     _keep_freed_memory()
     scheduler, client = _scheduler(args.scheduler)
     local = contextlib.ExitStack()
@@ -475,18 +460,17 @@ def _run(args) -> int:
                 raise OutputError(f"--out-dir {args.out_dir}: {exc.strerror or exc}") from None
         # progress bars (dask's, the cluster's) only where someone watches: not into pipes and logs
         progress = not args.quiet and sys.stderr.isatty()
-        for ds, (path, recipe, target, storage) in zip(datasets, jobs):
+        for path, run in runs:
             started = time.perf_counter()
+            ds, recipe, target = run.dataset, run.recipe, run.target
             if not args.quiet:
                 dims = " x ".join(f"{d}={n}" for d, n in recipe.shape.items()) or "scalar"
                 print(f"{path} -> {target}  [{recipe.scenario.name}: {dims}, "
                       f"{len(ds.data_vars)} variables]", file=sys.stderr)
             if args.verbose:
                 print(f"  chunks: {dict(ds.chunks) or 'one block'}", file=sys.stderr)
-            parts = args.parts or (recipe.size > PARTS_ABOVE and format_for(target).resumable)
             try:
-                write(ds, target, overwrite=args.overwrite, parts=parts, resume=args.resume, progress=progress,
-                      scheduler=scheduler, space_check=args.space_check, **storage)
+                run.write(progress=progress, scheduler=scheduler, space_check=args.space_check)
             except Exception as exc:
                 if client is None or not _cluster_failure(exc, client):
                     raise
@@ -511,8 +495,8 @@ def _run(args) -> int:
 
 def _said_written(target: Path, seconds: float) -> None:
     """-v: the written file's size, the time it took and its content hash, on stderr."""
-    from .hashing import ATTR
-    from .writers import format_for
+    from .output.formats import format_for
+    from .output.hashing import ATTR
 
     size = sum(f.stat().st_size for f in target.rglob("*") if f.is_file()) if target.is_dir() else target.stat().st_size
     with format_for(target).read(target, raw=True) as ds:
@@ -668,7 +652,7 @@ def _describe(args) -> int:
 
 
 def _validate(args) -> int:
-    from .recipe import RecipeError, load
+    from .recipe import load
 
     if sum(str(p) == "-" for p in args.recipes) > 1:
         raise UsageError("- (standard input) can be given once")

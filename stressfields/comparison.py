@@ -2,12 +2,12 @@
 
     ds = sf.compare("recipe.toml", "nodes.csv", tolerance=1e-2)     # `stressfields compare` on the command line
 
-(The module is not named `compare`: a submodule of that name would replace the function `sf.compare`
-in the package's namespace when first imported.)
+(`sf.compare` is `api.compare`; the module is not named `compare`: a submodule of that name would
+replace the function `sf.compare` in the package's namespace when first imported.)
 
 The user data is anything `stressfields compare` reads (`fe.formats`: CSV with the common FE header
 forms, NetCDF, Exodus II; VTU/VTK, XDMF, MED, Gmsh with the ``fe`` extra), an ``xr.Dataset`` along
-one dimension, or a mapping of header -> values; `sf.compare` is a thin front on
+one dimension, or a mapping of header -> values; `sf.compare` (`api.compare`) is a thin front on
 `fe.validate.compare_files`, the command's own path, with its switches as keywords. A column named
 like one of the scenario's parameters (``x``, ``y``, ``z``, ...) is a coordinate of the nodes, a
 column named like a float variable (``sigma_xx``, ...) a value to compare. Units go in brackets
@@ -54,74 +54,6 @@ ID_COLUMNS = ("node", "node_id", "id")
 
 class CompareError(ValueError):
     """Bad user data or a recipe that cannot be compared; the message is one line."""
-
-
-def compare(recipe: str | Path | Mapping, user_data: str | Path | xr.Dataset | Mapping, *,
-            tolerance: float | str | Mapping | None = None, variables: list[str] | tuple[str, ...] | None = None,
-            step: int | None = None, units: str | Mapping[str, str] | None = None, z_up: bool = False,
-            axisymmetric: bool = False, body: int = 1, exclude_edge: float | None = None,
-            remove_rigid_offset: bool = False, scale: str | None = None) -> xr.Dataset | list[xr.Dataset]:
-    """The user's values against the reference at the user's points: `stressfields compare` without
-    the report folder (`fe.validate.compare_files` does the work; the options are its switches).
-
-    Parameters
-    ----------
-    recipe : str, Path or Mapping
-        The recipe of the reference; the coordinates the user's data give replace its sweep.
-    user_data : str, Path, xarray.Dataset or Mapping
-        A file of nodes (CSV, NetCDF, Exodus II; VTU/VTK, XDMF, MED, Gmsh with the ``fe`` extra), a
-        dataset along one dimension, or a mapping of header (``sigma_xx[MPa]``) -> values.
-    tolerance : float, str or Mapping, optional
-        The largest max |difference| / S a variable may have to pass (a float), or limits on any
-        statistic (``"rms=1e-3,max=0.05"`` or ``{"rms": 1e-3}``); None: report only.
-    variables : list of str, optional
-        Compare only these value columns (default: every one).
-    step : int, optional
-        The time step (from 1) of an Exodus II file; None: every step.
-    units : str or Mapping, optional
-        The units of a format that carries none (VTU, Exodus II): ``"length=mm,stress=MPa"`` or
-        ``{"length": "mm", "stress": "MPa"}``. None: the recipe's ``[compare] units``, if any.
-    z_up, axisymmetric : bool
-        The model's body lies at z <= 0 (z up); a 2-D (r, z) mesh or cylindrical components.
-    body : int
-        1 (the half-space) or 2 (the second identical body, its mirror image).
-    exclude_edge : float, optional
-        Nodes within this many a of an edge of the contact are reported apart.
-    remove_rigid_offset : bool
-        Remove the mean difference of displacements (a finite model's rigid offset).
-    scale : {"p0", "p_m"}, optional
-        The user's stresses are divided by this scale.
-
-    Returns
-    -------
-    xarray.Dataset or list of xarray.Dataset
-        ``<v>_reference``, ``<v>_user``, ``<v>_difference`` and ``<v>_scale`` at every point; the
-        statistics and the verdict (``compare_result``) in its attributes. A file of several tables
-        (an Exodus II history without ``step``, nodes and element centroids) gives one per table.
-
-    Raises
-    ------
-    CompareError
-        In one line, for input that cannot be compared.
-    """
-    from .fe.units import UnitProblem, parse_unit_option
-    from .fe.validate import Options, compare_files, parse_tolerance
-
-    if isinstance(tolerance, Mapping):
-        tolerance = ",".join(f"{k}={v}" for k, v in tolerance.items())
-    if isinstance(units, Mapping):
-        units = ",".join(f"{k}={v}" for k, v in units.items())
-    try:
-        unit_option = None if units is None else parse_unit_option(units)
-    except UnitProblem as exc:
-        raise CompareError(str(exc)) from None
-    if isinstance(variables, str):
-        variables = [variables]
-    options = Options(tolerance=parse_tolerance(tolerance), variables=tuple(variables or ()) or None, step=step,
-                      units=unit_option, z_up=bool(z_up), axisymmetric=bool(axisymmetric), body=body,
-                      exclude_edge=exclude_edge, remove_rigid_offset=bool(remove_rigid_offset), scale=scale)
-    tables = compare_files(recipe, [user_data], options)
-    return tables[0] if len(tables) == 1 else tables
 
 
 @dataclass(frozen=True)
@@ -389,7 +321,7 @@ def check_report_folder(folder: Path, *, overwrite: bool = False) -> Path:
     """The one check of a report folder before anything is computed: it does not exist (its parent
     can take it), is an empty directory, or, with ``overwrite``, a previous report (nothing but
     REPORT_FILES). Raises OutputError naming the problem."""
-    from .writers import check_name
+    from .output.atomic import check_name
 
     folder = Path(folder)
     parent = folder.parent if str(folder.parent) else Path(".")
@@ -416,14 +348,12 @@ def check_report_folder(folder: Path, *, overwrite: bool = False) -> Path:
 
 def publish_report(folder: str | os.PathLike, fill, *, overwrite: bool = False) -> Path:
     """Publish a report folder whole: ``fill(tmp)`` writes its files into a temporary folder beside
-    ``folder`` (``.NAME.HOST-PID.RANDOM.partial``, `netcdf.temporary`), which is renamed into place
+    ``folder`` (``.NAME.HOST-PID.RANDOM.partial``, `output.atomic.temporary`), which is renamed into place
     when complete. On any error or interrupt (Ctrl-C, SIGTERM, SIGHUP) the temporary folder is removed
     and nothing is left; I/O failures (a full disk) are one OutputError. A folder a killed run left is
-    removed by the next (`netcdf.clean_stale`). The folder replaced by ``overwrite`` is moved aside in
+    removed by the next (`output.atomic.clean_stale`). The folder replaced by ``overwrite`` is moved aside in
     one rename and removed after, as for a Zarr store."""
-    from .netcdf import _umask, clean_stale, output_error, temporary
-    from .writers import target_lock
-    from .zarrstore import publish_folder
+    from .output.atomic import clean_stale, output_error, publish_folder, target_lock, temporary, umask
 
     folder = check_report_folder(Path(folder), overwrite=overwrite)
     parent = folder.parent if str(folder.parent) else Path(".")
@@ -432,7 +362,7 @@ def publish_report(folder: str | os.PathLike, fill, *, overwrite: bool = False) 
         tmp = temporary(folder, ".partial")
         try:
             fill(tmp)
-            os.chmod(tmp, 0o777 & ~_umask())         # mkdtemp makes 0700; publish like any new folder
+            os.chmod(tmp, 0o777 & ~umask())         # mkdtemp makes 0700; publish like any new folder
             fd = os.open(tmp, os.O_RDONLY)
             try:
                 os.fsync(fd)                        # the names of the files, before the folder's own

@@ -12,6 +12,19 @@ def show(value) -> str:
     return _SHOW.repr(value)
 
 
+class RecipeError(ValueError):
+    """An invalid recipe; ``problems`` lists every message."""
+
+    def __init__(self, problems: list[str], source: str = "recipe"):
+        self.problems = problems
+        self.source = source
+        super().__init__(f"{source}: " + "; ".join(problems))
+
+    def __str__(self) -> str:
+        lines = [f"{self.source} is not valid:"] + [f"  - {p}" for p in self.problems]
+        return "\n".join(lines)
+
+
 class OutputError(OSError):
     """The target cannot be written (exists, unwritable, disk full); nothing was left behind."""
 

@@ -43,9 +43,9 @@ def export_layout(source: str | os.PathLike, target: str | os.PathLike, layout: 
     """Write the file ``source`` (NetCDF or Zarr, its content hash verified first) into the directory
     ``target`` in ``layout``; returns ``target``. Raises OutputError (one line) for a file without
     [splits], a split left empty of train points, a missing pyarrow, or a target that exists."""
-    from .hashing import verify
+    from .output.form import encode_choices
+    from .output.formats import verify
     from .reading import open_dataset
-    from .writers import encode_choices
 
     if layout not in LAYOUTS:
         raise OutputError(f"--layout {layout!r} must be one of {', '.join(LAYOUTS)}")

@@ -35,7 +35,7 @@ import xarray as xr
 
 from .physics.flags import Validity
 from .reading import open_dataset
-from .recipe import map_plane, plot_along, plot_kind
+from .plotkeys import map_plane, plot_along, plot_kind
 
 #: at most this many panels (3 columns)
 MAX_PANELS = 6
@@ -98,15 +98,15 @@ def quicklook(path: str | Path, recipe) -> Path:
 
 
 def _save(fig, png: Path) -> None:
-    """The PNG written beside its target under a temporary name (`netcdf.temporary`) and renamed
+    """The PNG written beside its target under a temporary name (`output.atomic.temporary`) and renamed
     onto it when complete; an I/O failure (a full disk) is one OutputError and leaves no file."""
     from .errors import OutputError
-    from .netcdf import _umask, temporary
+    from .output.atomic import temporary, umask
 
     tmp = temporary(png, ".tmp")
     try:
         fig.savefig(tmp, dpi=90, format="png")
-        os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
+        os.chmod(tmp, 0o666 & ~umask())     # mkstemp makes 0600; publish like any new file
         os.replace(tmp, png)
     except OSError as exc:
         raise OutputError(f"cannot write {png}: {exc.strerror or exc}") from None

@@ -5,7 +5,7 @@ no file).
 The recipe is an ordinary one whose ``[points.sample]`` table gives the box to sample
 (``{ n = ..., method = "sobol" | "uniform", x = [low, high], nu = [low, high], ... }``; its ``seed``
 is replaced by the ``seed`` given here): ``n`` points are drawn in all, in batches of
-``batch_size`` (the last one shorter). The stream is the one `recipe.draw_sample` draws for the
+``batch_size`` (the last one shorter). The stream is the one `points.draw_sample` draws for the
 same specification, cut into batches: scipy's scrambled Sobol sequence (or NumPy's PCG64 uniform
 stream) continues from batch to batch, and every kernel is evaluated point by point, so the same
 (recipe, seed) gives the same bytes whatever the batch size, and the concatenated batches equal
@@ -76,7 +76,7 @@ class Batches:
         while left > 0:
             size = min(self.batch_size, left)
             left -= size
-            # as recipe.draw_sample maps its unit sample: low + u (high - low), clipped into the box
+            # as points.draw_sample maps its unit sample: low + u (high - low), clipped into the box
             inputs = np.clip(self._low + draw(size) * (self._high - self._low), self._low, self._high)
             yield inputs, self.evaluate(inputs)
 
@@ -141,7 +141,7 @@ def batches(recipe: str | Path | Mapping, batch_size: int, seed: int) -> Batches
 
 
 def _stream(method: str, dims: int, seed: int):
-    """draw(k) -> the next k rows of the unit sample `recipe.draw_sample` would draw for (method, seed)."""
+    """draw(k) -> the next k rows of the unit sample `points.draw_sample` would draw for (method, seed)."""
     rng = np.random.default_rng(seed)
     if method == "uniform":
         return lambda k: rng.random((k, dims))
@@ -150,7 +150,7 @@ def _stream(method: str, dims: int, seed: int):
     engine = qmc.Sobol(dims, scramble=True, seed=rng)
 
     def draw(k):
-        with warnings.catch_warnings():     # balance properties: as in recipe.draw_sample
+        with warnings.catch_warnings():     # balance properties: as in points.draw_sample
             warnings.filterwarnings("ignore", message=".*balance properties.*", category=UserWarning)
             return engine.random(k)
     return draw

@@ -3,7 +3,7 @@
 In memory (`sf.generate`) a sweep over choices (``control`` of graded_adhesive, ``domain`` of wavy)
 is a string-labelled dimension. On disk it is an int8 flag coordinate (``flag_values``/
 ``flag_meanings``) with the names beside it in ``<name>_name``, because CF coordinate variables must
-be numeric (`writers.encode_choices`). `open_dataset` turns it back into the labelled form, so
+be numeric (`output.form.encode_choices`). `open_dataset` turns it back into the labelled form, so
 ``open_dataset(p).sel(control="fixed_load")`` works and plots are labelled by name; the same is
 `xr.open_dataset(p, engine="stressfields")`.
 
@@ -19,7 +19,8 @@ import numpy as np
 import xarray as xr
 from xarray.backends import BackendEntrypoint
 
-from .writers import format_for
+from .output.form import SOURCES_ATTR
+from .output.formats import format_for
 
 
 def open_dataset(path: str | os.PathLike, **kw: Any) -> xr.Dataset:
@@ -28,7 +29,7 @@ def open_dataset(path: str | os.PathLike, **kw: Any) -> xr.Dataset:
     Parameters
     ----------
     path : str or path
-        The file or store (format from its suffix, `writers.format_for`).
+        The file or store (format from its suffix, `output.formats.format_for`).
     **kw
         As for `xarray.open_dataset` (e.g. ``chunks={}`` for dask arrays in the file's own chunks).
 
@@ -43,7 +44,7 @@ def open_dataset(path: str | os.PathLike, **kw: Any) -> xr.Dataset:
 def decode_choices(ds: xr.Dataset) -> xr.Dataset:
     """Every flag-coded choice dimension (an integer coordinate with ``flag_values`` and
     ``flag_meanings`` and its ``<name>_name`` coordinate) as a string-labelled dimension; the inverse
-    of `writers.encode_choices`."""
+    of `output.form.encode_choices`."""
     for name in [d for d in ds.dims if _flag_coded(ds, d)]:
         var = ds[name]
         meanings = dict(zip(np.ravel(var.attrs["flag_values"]).tolist(), var.attrs["flag_meanings"].split()))
@@ -65,7 +66,6 @@ def _flag_coded(ds: xr.Dataset, dim: str) -> bool:
 
 
 #: the global attribute listing the recipe hashes of every file a merged dataset came from
-SOURCES_ATTR = "stressfields_source_recipe_sha256"
 #: attributes of one file that a merged dataset does not share: its hash and its ACDD id
 _OWN = ("stressfields_content_sha256", "id")
 

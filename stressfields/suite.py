@@ -6,9 +6,9 @@ point form), ``registry.json`` (the suite version and, per dataset, its recipe, 
 of the release gate, and the content and values hashes of the file it makes) and ``catalog.yaml``
 (an intake catalog of the built files). `build` writes every dataset into a directory and skips
 those already present whose hashes verify (so an interrupted build resumes); `verify` recomputes
-every hash. Two hashes per dataset: the content hash (`hashing.content_hash`, what
+every hash. Two hashes per dataset: the content hash (`output.hashing.content_hash`, what
 ``stressfields hash`` checks: values and every attribute) and the values hash
-(`hashing.values_hash`: values, names, dims and types only), which the release gate
+(`output.hashing.values_hash`: values, names, dims and types only), which the release gate
 (tests/test_suite.py) holds fixed: a changed value needs a new ``suite_version`` and a CHANGELOG line.
 """
 from __future__ import annotations
@@ -57,16 +57,16 @@ def recipe_path(name: str, folder: str | Path | None = None) -> Path:
 def make(name: str, target: Path, folder: str | Path | None = None, overwrite: bool = False) -> Path:
     """Generate dataset ``name`` of the suite into ``target`` (NetCDF, float64, uncompressed)."""
     from .api import generate
-    from .writers import write
+    from .output.formats import write
 
     return write(generate(recipe_path(name, folder)), target, overwrite=overwrite)
 
 
 def file_hashes(path: str | Path) -> tuple[str, str]:
     """(content hash, values hash) of a written file after checking its stored content hash
-    (`hashing.verify`: OutputError if it is damaged or has none)."""
-    from .hashing import values_hash, verify
-    from .writers import format_for
+    (`output.formats.verify`: OutputError if it is damaged or has none)."""
+    from .output.formats import format_for, verify
+    from .output.hashing import values_hash
 
     content = verify(path)
     with format_for(path).read(path, raw=True) as ds:
@@ -147,7 +147,7 @@ def register(folder: str | Path | None = None, version: str | None = None,
             name = path.stem
             target = Path(tmp) / f"{name}.nc"
             from .api import generate
-            from .writers import write
+            from .output.formats import write
 
             write(generate(path), target)
             content, values = file_hashes(target)

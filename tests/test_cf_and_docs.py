@@ -137,7 +137,7 @@ def test_default_plot_labels_fit_one_line():
 
 
 def test_date_created_honours_source_date_epoch_and_stays_out_of_the_hash(tmp_path, monkeypatch):
-    from stressfields.hashing import file_hash
+    from stressfields.output.formats import file_hash
 
     recipe = {"scenario": "conical", "parameters": {"x": [0.0, 0.5]}, "output": {"variables": ["sigma_xx"]}}
     paths = []
@@ -156,7 +156,9 @@ def test_a_file_written_before_the_acdd_attributes_still_verifies(tmp_path):
     """A file in the form of earlier versions (no id, no date_created): its stored hash verifies."""
     import netCDF4
 
-    from stressfields.hashing import ATTR, stamp, verify
+    from stressfields.output.formats import verify
+    from stressfields.output.hashing import ATTR
+    from stressfields.output.netcdf import stamp
 
     path = sf.write(sf.generate({"scenario": "conical", "parameters": {"x": [0.5]}}), tmp_path / "old.nc")
     with netCDF4.Dataset(path, "a") as nc:

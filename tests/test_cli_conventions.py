@@ -38,7 +38,7 @@ def test_progress_bars_go_to_stderr(capsys):
 
     import dask
 
-    from stressfields.netcdf import progress_bar
+    from stressfields.output.compute import progress_bar
 
     with progress_bar(True):            # the bar shows after 0.5 s
         dask.delayed(time.sleep)(0.8).compute(scheduler="synchronous")

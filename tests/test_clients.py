@@ -10,9 +10,11 @@ import pytest
 import xarray as xr
 
 import stressfields as sf
-from stressfields import cli, writers
-from stressfields.hashing import file_hash
-from stressfields.netcdf import _layout
+from stressfields import cli
+from stressfields.output import options as outopts
+from stressfields.output.form import encode_choices
+from stressfields.output.formats import file_hash
+from stressfields.output.netcdf import _layout
 from stressfields.scenarios import REGISTRY
 
 from test_cf_and_docs import cf_failures, dimension_order_only
@@ -118,7 +120,7 @@ def test_float32_and_compression_stay_cf_clean_and_within_the_rounding_note(tmp_
     with xr.open_dataset(single) as got, xr.open_dataset(packed) as z:
         assert got.sigma_xx.dtype == np.float32 and got.x.dtype == np.float64
         assert "float32" in got.sigma_xx.attrs["stressfields_accuracy"]
-        assert "dtype=float32" in got.attrs[writers.OPTIONS_ATTR]
+        assert "dtype=float32" in got.attrs[outopts.OPTIONS_ATTR]
         ref = exact.sigma_xx.values
         finite = np.isfinite(ref)
         # float32 keeps 24 bits: |rounded - exact| <= 2^-24 |exact| (the note's 6e-8)
@@ -209,13 +211,13 @@ def test_reopened_chunks_follow_dask_and_stay_below_64_mb(tmp_path):
 
 
 def test_output_options_are_checked_together():
-    assert writers.output_options("float32", 9, "fill") == writers.OutputOptions("float32", 9, "fill")
-    problems = writers.output_option_problems("float16", 12, "drop")
+    assert outopts.output_options("float32", 9, "fill") == outopts.OutputOptions("float32", 9, "fill")
+    problems = outopts.output_option_problems("float16", 12, "drop")
     assert len(problems) == 3 and all(key in " ".join(problems) for key in ("dtype", "compression", "nonfinite"))
     with pytest.raises(sf.OutputError, match="float16"):
         sf.write(sf.generate(CONE), "unused.nc", dtype="float16")
-    option = writers.OutputOptions("float32", 3, "nan")
-    assert writers.OutputOptions.from_attrs({writers.OPTIONS_ATTR: option.text()}) == option
+    option = outopts.OutputOptions("float32", 3, "nan")
+    assert outopts.OutputOptions.from_attrs({outopts.OPTIONS_ATTR: option.text()}) == option
 
 
 def test_recipe_output_table_sets_the_storage(tmp_path):
@@ -273,7 +275,7 @@ def test_a_swept_choice_equals_each_choice_given_alone_and_hashes_as_its_cf_form
             np.testing.assert_array_equal(both[name].sel(domain=domain).values, alone[name].values)
     # the labelled dataset and the CF flag form build.py wrote before are the same file content
     labelled = sf.write(both, tmp_path / "labelled.nc")
-    flagged = sf.write(writers.encode_choices(both), tmp_path / "flagged.nc")
+    flagged = sf.write(encode_choices(both), tmp_path / "flagged.nc")
     assert file_hash(labelled) == file_hash(flagged)
 
 

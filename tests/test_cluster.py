@@ -6,7 +6,7 @@ import time
 import pytest
 
 from stressfields import cli
-from stressfields.hashing import file_hash
+from stressfields.output.formats import file_hash
 
 pytestmark = pytest.mark.slow   # kills cluster workers mid-write; run by .ci/run
 

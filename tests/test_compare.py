@@ -17,7 +17,8 @@ import xarray as xr
 
 from stressfields import cli
 from stressfields.cli import main
-from stressfields.comparison import UNITS, CompareError, compare, summary
+from stressfields.api import compare
+from stressfields.comparison import UNITS, CompareError, summary
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "fe_hertz_mindlin"
 RECIPE, NODES = EXAMPLE / "recipe.toml", EXAMPLE / "nodes.csv"
@@ -263,7 +264,7 @@ def test_readme_says_what_the_example_reports(example):
 
 def test_sf_compare_is_the_function():
     """In a fresh interpreter, as a user meets it: `sf.compare` is the function, also after a call."""
-    code = ("import stressfields as sf, stressfields.comparison as m; f = sf.compare; "
+    code = ("import stressfields as sf, stressfields.comparison, stressfields.api as m; f = sf.compare; "
             "sf.compare({'scenario': 'parabolic', 'parameters': {}}, {'x': [0.5], 'sigma_zz': [-1.0]}); "
             "print(f is m.compare and sf.compare is m.compare)")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)

@@ -13,8 +13,9 @@ import netCDF4
 import pytest
 
 import stressfields as sf
-from stressfields import cli, netcdf, parts
-from stressfields.hashing import file_hash
+from stressfields import cli
+from stressfields.output import atomic, formats, netcdf, parts
+from stressfields.output.formats import file_hash
 
 RECIPE = """scenario = "conical"
 [parameters]
@@ -101,7 +102,7 @@ def test_killed_run_leaves_nothing_or_a_complete_target(tmp_path, whole, mode, s
 def test_stale_temporaries_of_dead_runs_are_removed_and_live_ones_kept(tmp_path):
     recipe = tmp_path / "r.toml"
     recipe.write_text(SMALL)
-    host = netcdf.OWNER.split("-")[0]
+    host = atomic.OWNER.split("-")[0]
     sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"])
     dead = subprocess.Popen([sys.executable, "-c", "pass"])
     dead.wait()
@@ -135,7 +136,7 @@ def test_two_concurrent_runs_onto_one_target(tmp_path, suffix):
     winner = (a, b)[codes.index(0)]
     _verified(target)
     with sf.generate(winner) as expected, (netcdf.read(target) if suffix == ".nc"
-                                             else sf.writers.FORMATS["zarr"].read(target)) as got:
+                                             else formats.FORMATS["zarr"].read(target)) as got:
         assert got.attrs["stressfields_recipe_sha256"] == expected.attrs["stressfields_recipe_sha256"]
     assert _leftovers(tmp_path) == []
 
@@ -145,10 +146,10 @@ def test_publishing_never_replaces_a_target_that_appeared_meanwhile(tmp_path):
     ds = sf.generate(SMALL_DICT)
     for suffix in (".nc", ".zarr"):
         target = tmp_path / f"t{suffix}"
-        first = sf.writers.format_for(target).write(ds, target)
+        first = formats.format_for(target).write(ds, target)
         digest = _verified(first)
         with pytest.raises(sf.OutputError, match="created by another run"):
-            sf.writers.format_for(target).write(ds.isel(mu=[0]), target)
+            formats.format_for(target).write(ds.isel(mu=[0]), target)
         assert _verified(target) == digest
     assert _leftovers(tmp_path) == []
 
@@ -159,7 +160,7 @@ SMALL_DICT = {"scenario": "parabolic", "parameters": {"mu": [0.2, 0.3], "ux0": 0
 
 def test_a_second_run_holding_no_lock_is_refused_before_computing(tmp_path):
     target = tmp_path / "t.nc"
-    with sf.writers.target_lock(target):
+    with atomic.target_lock(target):
         with pytest.raises(sf.OutputError, match="being written by another run"):
             sf.write(sf.generate(SMALL_DICT), target)
     assert not target.exists() and _leftovers(tmp_path) == []

@@ -3,7 +3,8 @@ import netCDF4
 import xarray as xr
 
 from stressfields import cli
-from stressfields.hashing import ATTR, file_hash
+from stressfields.output.formats import file_hash
+from stressfields.output.hashing import ATTR
 
 RECIPE = ('scenario = "parabolic"\n[parameters]\nmu = [0.2, 0.3]\nux0 = 0.25\n'
           'y = { start = -1.5, stop = 1.5, num = 31 }\nx = { start = -1.5, stop = 1.5, num = 41 }\n')
@@ -49,7 +50,7 @@ def test_dry_run_writes_nothing(tmp_path, capsys):
 def test_slabs_cover_an_array_in_c_order():
     import numpy as np
 
-    from stressfields.hashing import slabs
+    from stressfields.output.hashing import slabs
 
     a = np.arange(3 * 4 * 5 * 6, dtype=np.float64).reshape(3, 4, 5, 6)
     for limit in (8, 48, 100, 480, 10**6):

@@ -132,12 +132,12 @@ def test_messages_quote_no_file_content(tmp_path, monkeypatch):
 def test_compare_node_files_quote_no_content(tmp_path):
     recipe = Path(__file__).parents[1] / "examples" / "fe_hertz_mindlin" / "recipe.toml"
     (tmp_path / "nodes.csv").symlink_to(recipe.with_name("nodes.csv"))      # a node file may be a link
-    assert comparison.compare(recipe, tmp_path / "nodes.csv").sizes["point"] == 200
+    assert sf.compare(recipe, tmp_path / "nodes.csv").sizes["point"] == 200
     for name, path in _hostile_files(tmp_path).items():
         if path.suffix not in (".csv", ".nc"):
             continue
         with pytest.raises(CompareError) as info:
-            comparison.compare(recipe, path)
+            sf.compare(recipe, path)
         assert not any(w in str(info.value) for w in SECRET_WORDS), (name, str(info.value))
 
 
@@ -262,7 +262,7 @@ def test_decoded_sizes_are_bounded_from_the_headers(tmp_path, monkeypatch):
     assert (tmp_path / "huge.nc").stat().st_size < 200_000
     assert "decode to 3,200,000,000 bytes; at most 1,000,000,000" in problems({**CONE, "points": {"file": "huge.nc"}})
     with pytest.raises(CompareError, match="decode to 3,200,000,000 bytes"):
-        comparison.compare(Path(__file__).parents[1] / "examples/fe_hertz_mindlin/recipe.toml", tmp_path / "huge.nc")
+        sf.compare(Path(__file__).parents[1] / "examples/fe_hertz_mindlin/recipe.toml", tmp_path / "huge.nc")
     assert time.perf_counter() - start < 5        # nothing was allocated or read (measured ~0.1 s)
 
 
@@ -287,9 +287,11 @@ def test_a_run_larger_than_the_free_space_is_refused_before_anything_is_written(
 
 
 def test_stored_bytes_follow_the_output_options():
+    from stressfields.output.form import stored_bytes
+
     ds = sf.generate({**CONE, "parameters": {**CONE["parameters"], "x": np.linspace(0, 1, 100).tolist(), "y": 0.0}})
-    full = sf.writers.stored_bytes(ds)
-    half = sf.writers.stored_bytes(ds, sf.output_options(dtype="float32"))
+    full = stored_bytes(ds)
+    half = stored_bytes(ds, sf.output_options(dtype="float32"))
     floats = sum(v.size for v in ds.data_vars.values() if v.dtype == np.float64)
     assert full - half == 4 * floats
 

@@ -134,7 +134,7 @@ def test_a_local_run_does_not_import_dask_distributed(tmp_path, scheduler):
             "import dask.distributed\nprint('importable')")
     done = subprocess.run([sys.executable, "-c", code], cwd=ROOT, capture_output=True, text=True, timeout=120)
     assert done.stdout.split("\n")[:2] == ["0 False False", "importable"], done.stderr
-    from stressfields.hashing import file_hash
+    from stressfields.output.formats import file_hash
 
     digest, stored = file_hash(tmp_path / "o.nc")
     assert digest == stored

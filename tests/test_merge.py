@@ -6,7 +6,7 @@ import xarray as xr
 
 import stressfields as sf
 from stressfields.errors import OutputError
-from stressfields.hashing import verify
+from stressfields.output.formats import verify
 
 BASE = {"scenario": "graded_adhesive", "parameters": {"profile": "parabolic", "R": 0.01, "E0": 1e6, "delta_gamma": 0.05,
                                                       "contact_radius": 1e-4},

@@ -32,8 +32,11 @@ def test_build_floor_reads_the_license_form():
 
 def test_one_version():
     assert "version" not in PROJECT["project"] and "version" in PROJECT["project"]["dynamic"]
-    assert PROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "stressfields.__version__"}
+    assert PROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "stressfields.version.__version__"}
     assert re.fullmatch(r"\d+\.\d+\.\d+", sf.__version__)
+    from stressfields import version
+
+    assert version.__version__ is sf.__version__
 
 
 def test_recipes_and_examples_ship_with_the_package():

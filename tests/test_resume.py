@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from stressfields import cli
-from stressfields.hashing import file_hash
+from stressfields.output.formats import file_hash
 from conftest import kill_after_two_parts
 
 RECIPE = """scenario = "conical"

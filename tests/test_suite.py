@@ -15,8 +15,8 @@ import xarray as xr
 from scipy.optimize import minimize_scalar
 
 from stressfields import suite
-from stressfields.hashing import values_hash
-from stressfields.writers import format_for
+from stressfields.output.formats import format_for
+from stressfields.output.hashing import values_hash
 
 ROOT = Path(__file__).resolve().parents[1]
 REGISTRY = suite.registry()

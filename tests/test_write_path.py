@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 import stressfields as sf
-from stressfields import hashing
+from stressfields.output import hashing
 from stressfields.build import default_chunks
-from stressfields.hashing import file_hash
+from stressfields.output.formats import file_hash, verify
 from conftest import kill_after_two_parts
 
 CONE = {"scenario": "conical",
@@ -56,7 +56,7 @@ def test_blocks_handed_to_hdf5_in_pieces_store_the_same_values(tmp_path, monkeyp
     """A block is written in C-order pieces of at most WRITE_BYTES: single values, parts of a row,
     whole rows, the whole block; every piece lands where it belongs (the file's hash, read back, is
     that of a file written in whole blocks)."""
-    from stressfields import netcdf
+    from stressfields.output import netcdf
 
     ds = sf.generate(CONE, chunks={"mu": 2, "x": 17})
     whole = file_hash(sf.write(ds, tmp_path / "whole.nc"))
@@ -69,7 +69,7 @@ def test_earlier_forms_of_the_content_hash_still_verify(tmp_path):
     attribute types) verifies, and a changed value is still caught."""
     import netCDF4
 
-    from stressfields.netcdf import read
+    from stressfields.output.netcdf import read
 
     path = sf.write(sf.generate(CONE), tmp_path / "a.nc")
     with read(path, raw=True) as ds:
@@ -78,11 +78,11 @@ def test_earlier_forms_of_the_content_hash_still_verify(tmp_path):
     for form, digest in forms.items():
         with netCDF4.Dataset(path, "a") as nc:
             nc.setncattr(hashing.ATTR, digest)
-        assert file_hash(path) == (digest, digest) and hashing.verify(path) == digest, form
+        assert file_hash(path) == (digest, digest) and verify(path) == digest, form
     with netCDF4.Dataset(path, "a") as nc:
         nc["sigma_xx"][0, 0, 0] = nc["sigma_xx"][0, 0, 0] + 1.0
     with pytest.raises(sf.errors.OutputError, match="damaged"):
-        hashing.verify(path)
+        verify(path)
 
 
 @pytest.mark.parametrize("options", [{"nonfinite": "fill"}, {"dtype": "float32", "nonfinite": "nan"},
@@ -161,16 +161,16 @@ def test_small_sweeps_stay_one_chunk_and_requests_are_kept():
 def test_parts_write_each_value_once_into_one_file_hashed_once(tmp_path, monkeypatch):
     """No file per part and no join: every block is written once, into the output's own file, which
     is read back once to hash it."""
-    from stressfields import netcdf
+    from stressfields.output import netcdf
 
     reads, writes = [], []
-    real_hash, real_write = hashing.file_hash, netcdf.write
-    monkeypatch.setattr(hashing, "file_hash", lambda p: reads.append(p) or real_hash(p))
+    real_hash, real_write = netcdf.stamp, netcdf.write
+    monkeypatch.setattr(netcdf, "stamp", lambda p: reads.append(p) or real_hash(p))
     monkeypatch.setattr(netcdf, "write", lambda *a, **k: writes.append(a) or real_write(*a, **k))
     ds = sf.generate(CONE, chunks={"mu": 1})
     target = sf.write(ds, tmp_path / "p.nc", parts=True)
     assert writes == [] and [Path(r).name for r in reads] == ["data.nc"]
-    monkeypatch.setattr(hashing, "file_hash", real_hash)
+    monkeypatch.setattr(netcdf, "stamp", real_hash)
     monkeypatch.setattr(netcdf, "write", real_write)
     assert file_hash(target)[0] == file_hash(target)[1] == file_hash(sf.write(ds, tmp_path / "whole.nc"))[0]
     assert not (tmp_path / "p.nc.parts").exists()
@@ -188,17 +188,18 @@ def test_parts_store_what_a_whole_run_stores(tmp_path, options):
 
 
 def test_large_rows_are_grouped_so_a_part_has_four_tasks_and_enough_points(monkeypatch):
-    from stressfields import parts
-    from stressfields.parts import part_edges
+    from stressfields.output import parts
+    from stressfields.output.form import prepare
+    from stressfields.output.parts import part_edges
 
-    big = sf.writers.prepare(sf.generate({**CONE, "parameters": {
+    big = prepare(sf.generate({**CONE, "parameters": {
         **CONE["parameters"], "mu": list(np.linspace(0.1, 0.5, 10)),
         "y": {"start": -1, "stop": 1, "num": 400}, "x": {"start": -1.5, "stop": 1.5, "num": 500}}},
         chunks={"mu": 1}))
     assert part_edges(big, "mu") == [0, 10]                  # rows of 2e5 points: 4e6 points to a part
     monkeypatch.setattr(parts, "PART_POINTS", 1)
     assert part_edges(big, "mu") == [0, 4, 8, 10]            # ... and at least four tasks
-    small = sf.writers.prepare(sf.generate(CONE, chunks={"mu": 1}))
+    small = prepare(sf.generate(CONE, chunks={"mu": 1}))
     assert part_edges(small, "mu") == [0, 1, 2, 3]           # small rows: a part each, as before
 
 
@@ -219,7 +220,8 @@ chunks = { mu = 1 }
 def test_killed_parts_run_resumes_to_the_same_hash_and_recomputes_a_damaged_part(tmp_path, monkeypatch):
     import netCDF4
 
-    from stressfields import cli, parts
+    from stressfields import cli
+    from stressfields.output import parts
 
     recipe = tmp_path / "r.toml"
     recipe.write_text(KILLED)
@@ -265,7 +267,7 @@ def test_a_file_closed_after_an_interrupt_refuses_the_blocks_still_arriving(tmp_
     under a write crashed the process: 3 of 40 runs given SIGHUP)."""
     import threading
 
-    from stressfields import netcdf
+    from stressfields.output import netcdf
 
     ds = sf.generate(CONE)
     path = tmp_path / "laid_out.nc"

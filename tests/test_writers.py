@@ -5,8 +5,8 @@ import pytest
 import xarray as xr
 
 import stressfields as sf
-from stressfields import writers
-from stressfields.hashing import file_hash
+from stressfields.output import formats
+from stressfields.output.formats import file_hash
 
 RECIPE = {"scenario": "conical", "parameters": {"mu": [0.0, 0.3], "x": {"start": -1.5, "stop": 1.5, "num": 31},
                                                 "y": 0.0},
@@ -56,9 +56,9 @@ def test_a_new_format_is_one_row_of_the_table(tmp_path, monkeypatch):
         Path(target).write_text("x")
         return Path(target)
 
-    row = writers.Format("fake", (".fake",), fake_write, read=None)
-    monkeypatch.setitem(writers.FORMATS, "fake", row)
-    assert writers.format_for("out.FAKE") is row
+    row = formats.Format("fake", (".fake",), fake_write, read=None)
+    monkeypatch.setitem(formats.FORMATS, "fake", row)
+    assert formats.format_for("out.FAKE") is row
     sf.write(sf.generate(RECIPE), tmp_path / "out.fake")
     assert calls == ["out.fake"]
     with pytest.raises(sf.OutputError, match="exists"):

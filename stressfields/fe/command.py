@@ -38,7 +38,7 @@ def run(args, plotting: bool) -> int:
     installed: cli.py decides)."""
     from ..comparison import check_report_folder, publish_report
     from ..textfiles import write_text
-    from ..writers import write
+    from ..output.formats import write
 
     options = options_from(args)
     files = list(args.user_data)

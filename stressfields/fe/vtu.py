@@ -29,7 +29,7 @@ def export_vtu(source: str | os.PathLike, target: str | os.PathLike, *, overwrit
         import meshio
     except ImportError:
         raise OutputError("export to .vtu needs meshio: pip install 'stressfields[fe]'") from None
-    from ..writers import check_target, format_for
+    from ..output.formats import check_target, format_for
 
     source, target = Path(source), Path(target)
     if not source.exists():

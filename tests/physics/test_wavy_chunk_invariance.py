@@ -137,7 +137,7 @@ def _computed(recipe, chunks):
 
 def test_a_substituting_recipe_hashes_alike_however_chunked():
     """The case of test_scenario_wavy: 1e5 points per contact, where auto substitutes."""
-    from stressfields import hashing
+    from stressfields.output import hashing
 
     recipe = _recipe("auto", contact.SUBSTITUTE_MIN_POINTS + 1)
     recipe["parameters"].update(a=[1e-4, 0.3], n_harmonics=3,

@@ -15,7 +15,7 @@ at any moment leaves no file at OUT.nc and a manifest listing only parts whose v
 ``resume=True`` reads every listed part back and checks each block against its CRC (a part that
 does not verify is computed again; a data.nc that was not completely laid out or cannot be opened is
 laid out anew and every part computed again), computes only the missing parts, then hashes the file
-(read back, `hashing.stamp`) and publishes it. The block list comes from the plan (the recipe's
+(read back, `netcdf.stamp`) and publishes it. The block list comes from the plan (the recipe's
 chunks), never from the manifest, and the manifest must match the plan (recipe hash, part
 boundaries) before anything is used. The published file's content hash equals that of an
 uninterrupted run: the values are the same bits and the metadata is the same.
@@ -31,21 +31,21 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from ..errors import OutputError
 from . import netcdf
-from .errors import OutputError
-from .writers import Format, parts_dir
+from .atomic import output_error, parts_dir
+from .compute import MIN_TASKS, PARALLEL_ABOVE
 
 MANIFEST = "manifest.json"
 DATA = "data.nc"
 
 
-def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool = False, scheduler=None,
-                   overwrite: bool = False) -> Path:
-    """Write ``ds`` to ``target`` (checked by `writers.check_target`, its run lock held) in parts of
-    NetCDF (the one resumable format)."""
+def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, overwrite: bool = False) -> Path:
+    """Write ``ds`` to ``target`` (checked by `formats.check_target`, its run lock held) in parts of
+    NetCDF (the one resumable format); a dataset without a chunked first dimension is written whole."""
     dim = next(iter(ds.dims), None)
     if dim is None or ds.chunks.get(dim) is None:
-        return fmt.write(ds, target, progress=progress, scheduler=scheduler, overwrite=overwrite)
+        return netcdf.write(ds, target, progress=progress, scheduler=scheduler, overwrite=overwrite)
     edges = part_edges(ds, dim)
     plan = {"recipe_sha256": ds.attrs.get("stressfields_recipe_sha256"), "dim": dim, "edges": edges}
     folder = parts_dir(target)
@@ -54,7 +54,7 @@ def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool 
     try:
         if not manifest.get("laid_out") or not _opens(data):
             _lay_out(ds, folder, manifest)
-        encoding = netcdf._encoding(ds)
+        encoding = netcdf.encodings(ds)
         with netcdf.open_values(data) as nc:
             for i, (lo, hi) in enumerate(zip(edges[:-1], edges[1:])):
                 sources = netcdf.sources(ds, encoding, dim, lo, hi, first=i == 0)
@@ -74,7 +74,7 @@ def write_in_parts(ds: xr.Dataset, target: Path, fmt: Format, *, progress: bool 
             print(f"  hashing {data.stat().st_size / 1e9:.2f} GB", file=sys.stderr)
         netcdf.finish(data, target, overwrite)
     except (OSError, RuntimeError) as exc:      # the folder stays: a resume takes it up
-        error = netcdf.output_error(exc, target, folder)
+        error = output_error(exc, target, folder)
         if error is None:
             raise
         raise error from exc
@@ -94,8 +94,6 @@ def part_edges(ds: xr.Dataset, dim: str) -> list[int]:
     PART_POINTS points: a part's chunks are its tasks, and a part of one task would leave every other
     core idle while it is computed (a 1e8-point grid of 5e5-point rows: 25 parts of eight tasks, not
     200 of one)."""
-    from .build import MIN_TASKS, PARALLEL_ABOVE
-
     rows = [int(n) for n in ds.chunks[dim]]
     others = [d for d in ds.chunks if d != dim]
     per_row = int(np.prod([len(ds.chunks[d]) for d in others]))
@@ -156,7 +154,7 @@ def _opens(data: Path) -> bool:
 
 def _start(folder: Path, plan: dict) -> dict:
     """The manifest of the parts folder: the existing one (a resume, allowed by
-    `writers.check_target`) after checking it belongs to this run, or a new one."""
+    `formats.check_target`) after checking it belongs to this run, or a new one."""
     if folder.exists():
         if not folder.is_dir():
             raise OutputError(f"{folder} is not a folder of parts; remove it and rerun")

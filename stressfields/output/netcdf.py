@@ -1,23 +1,11 @@
-"""NetCDF output: written beside the target under a temporary name, published when complete.
-
-Files beside a target are named after it and after the process that made them, so a later run can
-tell its own from those of a run that is gone (`clean_stale`):
-
-    .NAME.HOST-PID.RANDOM.tmp        a NetCDF file being written
-    .NAME.HOST-PID.RANDOM.partial    a Zarr store being written (see `zarrstore`)
+"""NetCDF output: written beside the target under a temporary name (`atomic.temporary`), laid out
+first and then every block written once where it belongs, hashed, and published when complete.
 """
 from __future__ import annotations
 
-import hashlib
 import os
-import re
-import shutil
-import socket
-import sys
-import tempfile
 import zlib
 from concurrent.futures import ThreadPoolExecutor
-from contextlib import nullcontext
 from pathlib import Path
 
 import netCDF4
@@ -25,8 +13,11 @@ import numpy as np
 import xarray as xr
 from xarray.backends.locks import HDF5_LOCK, NETCDFC_LOCK, combine_locks
 
-from .errors import OutputError
-from .hashing import slabs, stamp
+from ..errors import OutputError
+from .atomic import clean_stale, fsync_path, publish, removed_on_failure, temporary, umask
+from .compute import compute, local
+from .hashing import ATTR, slabs, stored_hash
+from .options import FILL_VALUES, OutputOptions
 
 #: bytes per write call: a block is handed to HDF5 in C-order pieces of at most this size. Writes of
 #: 8 MB (a 1e6-point block) into new pages of the page cache cost 3-5x the system time of 2 MB ones
@@ -34,111 +25,13 @@ from .hashing import slabs, stamp
 #: and within a run of 1e7 points in 1e6-point blocks that was 3 s of system time out of 7 of CPU
 WRITE_BYTES = 2 * 2 ** 20
 
-#: host and process that own a temporary: a short hash of the host name (a shared disk may be written
-#: from several machines, whose process ids mean nothing here) and the process id
-OWNER = f"{hashlib.sha256(socket.gethostname().encode()).hexdigest()[:6]}-{os.getpid()}"
-#: bytes a temporary's name adds to the target's (the longest process id of Linux, 4194304)
-TEMP_OVERHEAD = len(".." + OWNER.split("-")[0] + "-4194304" + ".12345678" + ".partial")
-
-
-def temporary(target: Path, suffix: str) -> Path:
-    """A new, unique, empty temporary beside ``target``: a file (``.tmp``) or a directory (``.partial``)."""
-    parent = target.parent if str(target.parent) else Path(".")
-    prefix = f".{target.name}.{OWNER}."
-    try:
-        if suffix == ".partial":
-            return Path(tempfile.mkdtemp(prefix=prefix, suffix=suffix, dir=parent))
-        fd, tmp = tempfile.mkstemp(prefix=prefix, suffix=suffix, dir=parent)
-    except OSError as exc:
-        raise OutputError(f"cannot write {target}: {exc.strerror or exc}") from None
-    os.close(fd)
-    return Path(tmp)
-
-
-def clean_stale(target: Path) -> list[Path]:
-    """Remove the temporaries of ``target`` left by killed runs of this host (their process is gone);
-    those of live runs, or of other hosts, are kept. Returns what was removed."""
-    parent = target.parent if str(target.parent) else Path(".")
-    pattern = re.compile(rf"^\.{re.escape(target.name)}\.([0-9a-f]{{6}})-(\d+)\.[^./]+\.(tmp|partial)$")
-    removed = []
-    try:
-        names = os.listdir(parent)
-    except OSError:
-        return removed
-    for name in names:
-        m = pattern.match(name)
-        if m and f"{m[1]}-{m[2]}" != OWNER and not owner_alive(f"{m[1]}-{m[2]}"):
-            path = parent / name
-            shutil.rmtree(path, ignore_errors=True) if path.is_dir() else _remove(str(path))
-            removed.append(path)
-    return removed
-
-
-def owner_alive(owner: str) -> bool:
-    """Whether the process ``HOST-PID`` may still run (always True for another host)."""
-    host, _, pid = owner.partition("-")
-    if host != OWNER.split("-")[0] or not pid.isdigit():
-        return True
-    try:
-        os.kill(int(pid), 0)
-    except ProcessLookupError:
-        return False
-    except OSError:         # exists, owned by someone else
-        return True
-    return True
-
-
-def publish(tmp: Path, target: Path, overwrite: bool) -> None:
-    """Give the complete file ``tmp`` its final name. Without ``overwrite`` the target is claimed in one
-    atomic step (a hard link fails if the name exists), so of two runs onto one name exactly one wins."""
-    if overwrite:
-        os.replace(tmp, target)
-        return
-    try:
-        os.link(tmp, target, follow_symlinks=False)
-    except FileExistsError:
-        raise OutputError(f"{target} was created by another run while this one was writing; refusing to "
-                          "overwrite it (use --overwrite)") from None
-    except OSError:         # no hard links on this file system: the run lock (`writers`) guards the name
-        if os.path.lexists(target):
-            raise OutputError(f"{target} exists; refusing to overwrite it (use --overwrite)") from None
-        os.rename(tmp, target)
-        return
-    os.unlink(tmp)
-
-
-def compute(delayed, *, progress: bool = False, scheduler=None) -> None:
-    """``delayed.compute`` that, on the local threads, returns only when no task is still running: a
-    failed or interrupted write must not have a thread recreate the temporary after it was removed."""
-    from dask.base import get_scheduler
-    from dask.threaded import get as threaded_get
-
-    if _is_client(scheduler):
-        _cluster_compute(delayed, scheduler, progress)
-        return
-    with progress_bar(progress):
-        if scheduler not in (None, "threads") or (scheduler is None and get_scheduler() not in (None, threaded_get)):
-            delayed.compute(scheduler=scheduler)
-            return
-        workers = os.cpu_count() or 1
-        pool = ThreadPoolExecutor(workers)
-        try:
-            delayed.compute(scheduler=threaded_get, pool=pool, num_workers=workers)
-        except BaseException as exc:
-            # interrupted (Ctrl-C, a signal; not a failed task): the caller removes the temporary
-            # without waiting for the running tasks, one of which may wait on a lock the interrupted
-            # main thread held
-            pool.shutdown(wait=isinstance(exc, Exception), cancel_futures=True)
-            raise
-        pool.shutdown(wait=True)
-
 
 def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, overwrite: bool = False) -> Path:
     """Compute ``ds`` chunk by chunk and write it to ``target`` atomically.
 
     The file appears under its final name only once it is complete, with its content hash (see
     `hashing`) stored as a global attribute, read back from the written file; the caller has checked
-    the target (`writers.check_target`);
+    the target (`formats.check_target`);
     without ``overwrite`` a file another run published meanwhile is never replaced (`publish`).
     ``scheduler`` is passed to dask (None: the local threads).
     """
@@ -146,7 +39,7 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
     clean_stale(target)
     tmp = str(temporary(target, ".tmp"))
     with removed_on_failure(tmp, target):
-        encoding = _encoding(ds)
+        encoding = encodings(ds)
         lazy = sources(ds, encoding)
         if not lazy or local(scheduler):
             # laid out with fill mode off, then every block written once (`store`); a dataset in
@@ -159,7 +52,7 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
             # on a cluster xarray's writer: its locks reach the workers
             compute(ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding, compute=False), progress=progress,
                     scheduler=scheduler)
-        os.chmod(tmp, 0o666 & ~_umask())     # mkstemp makes 0600; publish like any new file
+        os.chmod(tmp, 0o666 & ~umask())     # mkstemp makes 0600; publish like any new file
         finish(Path(tmp), target, overwrite)
     return target
 
@@ -177,34 +70,14 @@ def finish(tmp: Path, target: Path, overwrite: bool) -> None:
     publish(tmp, target, overwrite)
 
 
-class removed_on_failure:
-    """Remove the temporary ``tmp`` of ``target`` if the block fails in any way (an interrupt
-    included), and report I/O failures as one OutputError naming the target and the free space."""
-
-    def __init__(self, tmp, target: Path):
-        self.tmp, self.target = str(tmp), target
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, kind, exc, tb):
-        if kind is None:
-            return False
-        _remove(self.tmp)
-        error = output_error(exc, self.target, self.target.parent if str(self.target.parent) else Path("."))
-        if error is not None:
-            raise error from exc
-        return False
-
-
-def output_error(exc: BaseException, target: Path, folder: Path) -> OutputError | None:
-    """The one-line OutputError for an I/O failure while writing ``target`` (naming the free space
-    in ``folder``), or None for anything else (an OutputError already is one)."""
-    if isinstance(exc, OSError) and not isinstance(exc, OutputError):
-        return OutputError(f"cannot write {target}: {exc.strerror or exc}{_space(folder)}")
-    if isinstance(exc, RuntimeError) and str(exc).startswith("NetCDF:"):   # HDF5's I/O failures
-        return OutputError(f"cannot write {target}: {exc}{_space(folder)}")
-    return None
+def stamp(path: str | Path) -> str:
+    """Compute the content hash of a written NetCDF file and store it as a global attribute."""
+    with read(path, raw=True) as ds:
+        digest, _ = stored_hash(ds)
+    with netCDF4.Dataset(path, "a") as nc:
+        nc.setncattr(ATTR, digest)
+        nc.setncattr("id", digest)
+    return digest
 
 
 def layout(ds: xr.Dataset, path: Path | str) -> None:
@@ -222,7 +95,7 @@ def layout(ds: xr.Dataset, path: Path | str) -> None:
         nc.set_fill_off()
         # xarray's own write minus the values of dask variables: they are registered for a later
         # store that never runs here
-        ds.dump_to_store(xr.backends.NetCDF4DataStore(nc), encoding=_encoding(ds))
+        ds.dump_to_store(xr.backends.NetCDF4DataStore(nc), encoding=encodings(ds))
     finally:
         nc.close()
     with open(path, "rb+") as fh:
@@ -394,30 +267,10 @@ def _flush_soon(path: str):
     it. The caller fsyncs again after storing the hash."""
     pool = ThreadPoolExecutor(1)
 
-    def flush():
-        fd = os.open(path, os.O_RDONLY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
     try:
-        return pool.submit(flush)
+        return pool.submit(fsync_path, path)
     finally:
         pool.shutdown(wait=False)
-
-
-def local(scheduler) -> bool:
-    """Whether tasks run in this process (threads or synchronously), where a kept block is visible to
-    the writer: not on a cluster, not in other processes."""
-    from dask.base import get_scheduler
-    from dask.local import get_sync
-    from dask.threaded import get as threaded_get
-
-    if _is_client(scheduler):
-        return False
-    if scheduler is None:
-        return get_scheduler() in (None, threaded_get, get_sync)
-    return scheduler in ("threads", "threading", "sync", "synchronous", "single-threaded")
 
 
 def read(path, raw: bool = False, **kw) -> xr.Dataset:
@@ -430,41 +283,17 @@ def read(path, raw: bool = False, **kw) -> xr.Dataset:
     return xr.open_dataset(path, **{"engine": "netcdf4", **kw})
 
 
-def _umask() -> int:
-    try:
-        with open("/proc/self/status") as fh:      # read without changing it (os.umask sets it)
-            for line in fh:
-                if line.startswith("Umask:"):
-                    return int(line.split()[1], 8)
-    except (OSError, ValueError):
-        pass
-    return 0o022
-
-
-def _space(folder: Path) -> str:
-    try:
-        st = os.statvfs(folder)
-    except OSError:
-        return ""
-    return f" ({st.f_bavail * st.f_frsize / 1e6:,.1f} MB free in {folder})"
-
-
-#: the fill value of the ``fill`` option per float size: NetCDF's default fill values, which readers
-#: that mask (netCDF4, xarray) know
-_FILL = {4: netCDF4.default_fillvals["f4"], 8: netCDF4.default_fillvals["f8"]}
 #: the largest HDF5 chunk: what `xr.open_dataset(f, chunks={})` hands dask as one chunk
 CHUNK_BYTES = 64 * 2 ** 20
 #: uncompressed variables up to this size are stored contiguous (see `_layout`)
 CONTIGUOUS_BYTES = 256 * 2 ** 20
 
 
-def _encoding(ds: xr.Dataset) -> dict:
+def encodings(ds: xr.Dataset) -> dict:
     """Per variable: no implicit fill value; HDF5 chunks aligned with the dask chunks (so a task
     writes whole chunks and a reader gets them back with `chunks={}`), at most `CHUNK_BYTES`;
-    zlib with byte shuffling when the options (`writers.OutputOptions`) ask for compression;
+    zlib with byte shuffling when the options (`options.OutputOptions`) ask for compression;
     `_FillValue` for the ``fill`` option; text as UTF-8 char arrays."""
-    from .writers import OutputOptions
-
     options = OutputOptions.from_attrs(ds.attrs)
     enc: dict = {}
     for name, var in ds.variables.items():
@@ -475,7 +304,7 @@ def _encoding(ds: xr.Dataset) -> dict:
             continue
         e: dict = {"_FillValue": None}
         if options.nonfinite == "fill" and var.dtype.kind == "f" and name not in ds.coords:
-            e["_FillValue"] = var.dtype.type(_FILL[var.dtype.itemsize])
+            e["_FillValue"] = var.dtype.type(FILL_VALUES[var.dtype.itemsize])
         if var.ndim:
             e.update(_layout(var, options.compression or 0))
         enc[name] = e
@@ -502,44 +331,3 @@ def _layout(var, level: int) -> dict:
     if compressed:
         e.update(zlib=True, complevel=level, shuffle=True)
     return e
-
-
-def _is_client(scheduler) -> bool:
-    return type(scheduler).__name__ == "Client" and type(scheduler).__module__.startswith("distributed")
-
-
-def _cluster_compute(delayed, client, progress: bool) -> None:
-    """Compute on a dask.distributed cluster; with ``progress``, dask.distributed's text progress bar of
-    the tasks done on the workers (to stderr, like the run's other lines), blocking until the end."""
-    future = client.compute(delayed)
-    try:
-        if progress:
-            from contextlib import redirect_stdout
-
-            from distributed import progress as show
-
-            with redirect_stdout(sys.stderr):     # the bar prints to stdout; stdout carries results only
-                show(future, notebook=False, multi=False)
-            print(file=sys.stderr)
-        future.result()
-    finally:
-        try:
-            future.release()
-        except Exception:       # a lost scheduler has released it already
-            pass
-
-
-def progress_bar(show: bool):
-    """dask's progress bar, on stderr: stdout carries results only (`run -o x.nc > log` stays empty)."""
-    if not show:
-        return nullcontext()
-    from dask.diagnostics import ProgressBar
-
-    return ProgressBar(minimum=0.5, dt=0.2, out=sys.stderr)
-
-
-def _remove(path: str) -> None:
-    try:
-        os.unlink(path)
-    except FileNotFoundError:
-        pass

@@ -1,6 +1,6 @@
 """Zarr output: on a dask.distributed cluster every worker writes its own chunk-aligned region and
 nothing passes through the client. The store is built beside the target under a name of its own
-(``.NAME.HOST-PID.RANDOM.partial``, see `netcdf.temporary`) and renamed when complete, with its
+(``.NAME.HOST-PID.RANDOM.partial``, see `atomic.temporary`) and renamed when complete, with its
 content hash in the group attributes.
 
 Zarr keeps attributes as JSON, which has no integer widths and no order of arrays, so the store
@@ -10,7 +10,6 @@ export to NetCDF is then the file a direct NetCDF run writes.
 """
 from __future__ import annotations
 
-import os
 import shutil
 import warnings
 from contextlib import contextmanager
@@ -19,9 +18,11 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .errors import OutputError
+from ..errors import OutputError
+from .atomic import clean_stale, publish_folder, temporary
+from .compute import compute
 from .hashing import ATTR, content_hash
-from .netcdf import clean_stale, compute, temporary
+from .options import FILL_VALUES, OutputOptions
 
 
 def _zarr():
@@ -34,7 +35,7 @@ def _zarr():
 
 def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=None, overwrite: bool = False) -> Path:
     """Write ``ds`` to the Zarr store ``target`` atomically (the caller has checked the target and holds
-    its run lock, `writers.target_lock`); without ``overwrite`` an existing target is never replaced."""
+    its run lock, `atomic.target_lock`); without ``overwrite`` an existing target is never replaced."""
     zarr = _zarr()
     target = Path(target)
     clean_stale(target)
@@ -74,12 +75,9 @@ TYPED_ATTRS = ("flag_values", "flag_masks", "valid_min", "valid_max", "valid_ran
 
 def _encoding(ds: xr.Dataset) -> dict:
     """Chunks as dask's (each worker writes whole chunks of its own); the compressor from the
-    output options (`writers.OutputOptions`): zarr's default (zstd) unless a level is given, none
+    output options (`options.OutputOptions`): zarr's default (zstd) unless a level is given, none
     at 0, Blosc/zstd with byte shuffling at 1-9; `_FillValue` for the ``fill`` option."""
     from zarr.codecs import BloscCodec, BloscShuffle
-
-    from .netcdf import _FILL
-    from .writers import OutputOptions
 
     options = OutputOptions.from_attrs(ds.attrs)
     encoding = {}
@@ -92,7 +90,7 @@ def _encoding(ds: xr.Dataset) -> dict:
         elif options.compression is not None and var.dtype != object:
             e["compressors"] = (BloscCodec(cname="zstd", clevel=options.compression, shuffle=BloscShuffle.shuffle),)
         if options.nonfinite == "fill" and var.dtype.kind == "f" and name not in ds.coords:
-            e["_FillValue"] = var.dtype.type(_FILL[var.dtype.itemsize])
+            e["_FillValue"] = var.dtype.type(FILL_VALUES[var.dtype.itemsize])
         encoding[name] = e
     return encoding
 
@@ -114,23 +112,6 @@ def _ordered(ds: xr.Dataset, order: list[str]) -> xr.Dataset:
         item = {name: ds.variables[name]}
         out = out.assign_coords(item) if name in ds.coords else out.assign(item)
     return out
-
-
-def publish_folder(partial: Path, target: Path, overwrite: bool) -> None:
-    """Rename the complete folder (a store, `comparison.publish_report`'s report) onto ``target``. A
-    rename replaces an empty directory, so the name is checked first, under the run lock. The folder
-    replaced by ``overwrite`` is moved aside in one rename and removed after: the target is always
-    either the old folder or the new one."""
-    if not os.path.lexists(target):
-        os.rename(partial, target)
-        return
-    if not overwrite:
-        raise OutputError(f"{target} was created by another run while this one was writing; refusing to "
-                          "overwrite it (use --overwrite)")
-    old = temporary(target, ".partial")
-    os.rename(target, old) if target.is_dir() and not target.is_symlink() else os.replace(target, old / "old")
-    os.rename(partial, target)
-    shutil.rmtree(old, ignore_errors=True)
 
 
 def read(path, raw: bool = False, **kw) -> xr.Dataset:
