@@ -25,9 +25,8 @@ from .output.compute import MIN_TASKS, PARALLEL_ABOVE
 from .recipe import POINT, Recipe, RecipeError, chunk_problems
 from .scenarios.base import ARRAY
 
-#: points per chunk (~4 MB a float field): 1e7 points of eleven fields in 5e5-point chunks took
-#: 3.66-3.75 s against 3.74-3.91 s in 1e6-point ones (system time 0.70-0.87 s against 1.15-1.29 s:
-#: the kernels' temporaries; three runs each), 4.00-4.17 s in 2.5e5-point ones, 4.3-5.5 s in 6e4
+#: points per chunk (~4 MB a float field): the fastest of 6e4 to 1e6 on a large run; larger chunks pay
+#: in system time for the kernels' temporaries, smaller ones in scheduling (docs/bench/tuning.md)
 TARGET_CHUNK_POINTS = 500_000
 
 

@@ -25,9 +25,8 @@ import time
 from pathlib import Path
 
 # the dask threads are the run's parallelism: OpenBLAS's own threads (started with NumPy, used by
-# the few LAPACK calls at singular points) only spin beside them (a 1e7-point run of eleven fields:
-# 4.3 s of user CPU instead of 4.5-5.1, medians of 3). Set before NumPy is first imported; a
-# value the user set is kept.
+# the few LAPACK calls at singular points) only spin beside them and cost CPU (docs/bench/tuning.md).
+# Set before NumPy is first imported; a value the user set is kept.
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 from .errors import OutputError, RecipeError
@@ -449,8 +448,7 @@ def _run(args) -> int:
         local.enter_context(_local_scheduler(scheduler))
         scheduler = None        # dask's configuration names it now
     # what is alive now (modules, the recipes) lives to the end: the garbage collector's passes
-    # during the computation then skip it (a 1e7-point run of eleven fields: 3.7 s wall instead of
-    # 4.0-5.0, 4.0-4.2 s of user CPU instead of 4.1-4.6, three pairs)
+    # during the computation then skip it (large runs ~10 % faster, docs/bench/tuning.md)
     gc.freeze()
     try:
         if not args.output:

@@ -20,9 +20,8 @@ from .hashing import ATTR, slabs, stored_hash
 from .options import FILL_VALUES, OutputOptions
 
 #: bytes per write call: a block is handed to HDF5 in C-order pieces of at most this size. Writes of
-#: 8 MB (a 1e6-point block) into new pages of the page cache cost 3-5x the system time of 2 MB ones
-#: here (eleven 88 MB variables: 0.63-0.94 s against 0.17-0.19 s, three runs each; 4 MB: 0.17-0.73 s),
-#: and within a run of 1e7 points in 1e6-point blocks that was 3 s of system time out of 7 of CPU
+#: 8 MB (a 1e6-point block) into new pages of the page cache cost 3-5x the system time of 2 MB ones,
+#: close to half the CPU of a large run (docs/bench/tuning.md)
 WRITE_BYTES = 2 * 2 ** 20
 
 

@@ -83,8 +83,7 @@ def write(ds: xr.Dataset, target: Path, *, progress: bool = False, scheduler=Non
 
 
 #: points a part holds at least where rows are large: each part costs its own graph, flush and
-#: manifest entry (1e8 points of von Mises alone: 10.2-12.2 s in 50 parts of 2e6 points, 9.7-10.2 s
-#: in 25 of 4e6)
+#: manifest entry, which 4e6-point parts make small (docs/bench/tuning.md)
 PART_POINTS = 4_000_000
 
 

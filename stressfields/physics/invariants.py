@@ -50,8 +50,8 @@ def principal_stresses(sxx, syy, szz, sxy, sxz, syz):
     flat = [c.ravel() for c in comps]
     n = flat[0].size
     out = np.empty((3, n))
-    # chunks keep the ~40 temporaries of a chunk in cache: 1e6 random tensors, median of 5, ns per
-    # point by chunk: 2^12 104, 2^13 95, 2^14 101, 2^15 117, 2^16 124, 2^17 314 (whole array: 2x 2^13)
+    # chunks keep the ~40 temporaries of a chunk in cache (2^13 the fastest; the whole array at once
+    # takes twice as long: docs/bench/tuning.md)
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         for s in range(0, n, _CHUNK):
             sl = slice(s, s + _CHUNK)

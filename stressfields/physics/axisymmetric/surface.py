@@ -48,8 +48,7 @@ __all__ = ["surface_stress", "surface_dpdz", "stick_radius", "mean_pressure", "m
 COMPONENTS = ("xx", "yy", "zz", "xy", "xz", "yz")
 #: points per block. The quadrature route's (nodes x points) arrays stay in cache at 4096; the
 #: closed forms make many short NumPy calls per block, whose interpreter overhead serialises
-#: threaded dask workers at 4096 (a 4e6-point recipe -> NetCDF run: 1.8 s at 4096, 1.15 s at
-#: 16384) while one thread is fastest at 16384 (0.24 s per 1e6 points against 0.40 s at 65536)
+#: threaded dask workers at 4096, and one thread is fastest at 16384 (docs/bench/tuning.md)
 _CHUNK = 4096
 _CLOSED_CHUNK = 16384
 

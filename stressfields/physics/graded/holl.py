@@ -43,10 +43,8 @@ COMPONENTS = ("rr", "tt", "zz", "rz")
 #: rtol -> (Gauss nodes per radial panel, panel growth ratio, nodes per u-panel, u-panel length, nodes on
 #: [pi/2, pi]).  Measured at k = 0 against the closed-form Hertz field at nu = 1/2 (the same kernel), 306
 #: points r/a in [0, 3], z/a in [1e-6, 5] (edge and axis included), worst |error| / p0 per row: 8.7e-6,
-#: 4.0e-7, 4.4e-9, 1.1e-11, 1.7e-13; the azimuth rule dominates the error.  Cost per CPU second (k = 0.5,
-#: benchmarks/graded_interior_rate.py, medians of 3 runs of medians of 5, load average 3 on 2 cores): a
-#: rho-z map 41 x 25 with z/a >= 0.02: 146 000, 97 000, 127 000, 50 000, 33 000 points; shallow points
-#: z/a in [1e-6, 1]: 27 000, 13 700, 11 700, 7 100, 4 800
+#: 4.0e-7, 4.4e-9, 1.1e-11, 1.7e-13; the azimuth rule dominates the error.  The cost per row is measured
+#: by benchmarks/graded_interior_rate.py (docs/bench/tuning.md)
 _ORDERS = (
     (1e-4, (6, 4.0, 6, 2.0, 6)),
     (1e-6, (8, 3.0, 8, 2.0, 8)),
