@@ -7,7 +7,7 @@ values of one case, the factor that takes the physics' values to the variable's 
 mode (normalised: divided by the scale; physical: SI units), the text and symbol its attributes
 carry, and how ``compare`` finds the scale's value in SI units.  ``apply_scales`` is the one place
 the factors multiply values: the scenarios' ``evaluate`` calls it, so ``build`` (the dataset),
-``sf.batches`` (``procedural``) and ``compare`` (through ``generate``) all get the same numbers.
+``sf.batches`` and ``compare`` (both through ``procedural.evaluate``) all get the same numbers.
 
 E* = E/(1-nu^2) is formed by ``effective_modulus`` and nowhere else.
 """
