@@ -74,7 +74,8 @@ MATERIAL = (E0, C0, NU, K)
 #: nu = 1/(2+k), which `poisson = "holl_ratio"` sets
 Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface); given, the "
               "stress variables are computed below the surface, for k = 0 (any nu, every profile) or nu = "
-              "1/(2+k) (the power-law profiles: parabolic, conical, power_law)", low=0.0, high=1e6, label="depth z / a", axis="Z")
+              "1/(2+k) (the power-law profiles: parabolic, conical, power_law)", low=0.0, high=1e6,
+              label="depth z / a", axis="Z")
 # no default: a recipe without it is recorded (and hashed) as before the choice existed
 POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu; also when omitted) or 'holl_ratio' "
                       "(nu = 1/(2+k), following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
@@ -111,8 +112,8 @@ def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, .
         Variable("stress_validity", "validity of the stress variables at the point", dims=dims, dtype="int8",
                  always=True, **declare(STRESS_CODES, where={
                      V.unbounded_at_singular_point: f"{edge}the centre r = 0 at z = 0 where the pressure is "
-                                                    "unbounded: the cone (or a tabulated tip of nonzero slope) at k = 0, a "
-                                                    "power law with n + k <= 1"},
+                                                    "unbounded: the cone (or a tabulated tip of nonzero slope) at "
+                                                    "k = 0, a power law with n + k <= 1"},
                      note="Only the stress variables in this file are considered."),
                  label="validity of the stresses"),
     )
