@@ -108,3 +108,17 @@ def test_k_above_zero_and_a_clamped_tip_are_refused_in_one_line():
         with pytest.raises(ValueError, match=r"slope_at_0 set is not solved below the surface: its spline's end "
                                              r"condition .*\(slope_at_0 = 0\.0\)$"):
             call()
+
+
+def test_peak_of_a_sampled_paraboloid_is_the_closed_form_peak():
+    """The peak search on the tabulated field finds the paraboloid's tau_max peak (on the axis at 0.48 a,
+    found on its closed form) to the superposition's rtol in value and the search's 1e-7 a in position."""
+    from stressfields.physics.graded.interior import peaks
+
+    kw = dict(a=A0, k=0.0, nu=NU, E0=E0, c0=C0, rtol=1e-10)
+    got = peaks(gp.Indenter.tabulated(R_TAB, R_TAB ** 2 / (2 * R)), **kw)
+    ref = peaks(gp.Indenter.parabolic(R), **kw)
+    assert float(got["tau_max_peak"]) == pytest.approx(float(ref["tau_max_peak"]), rel=1e-9)
+    assert float(got["tau_max_peak_depth"]) == pytest.approx(float(ref["tau_max_peak_depth"]), abs=1e-7)
+    assert float(got["tau_max_peak_rho"]) == float(ref["tau_max_peak_rho"]) == 0.0
+    assert int(got["peak_validity"]) == int(ref["peak_validity"]) == 0
