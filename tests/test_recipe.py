@@ -175,10 +175,13 @@ MINIMAL = {
 
 
 #: variables produced only under a further parameter: (scenario, variable) -> the parameters they need
-#: what a variable needs beyond the minimal recipe: graded_tangential's peaks are solved at k = 0
-NEEDS = {("graded_tangential", f"{field}_peak{tail}"): {"k": 0.0}
-         for field in ("tau_max", "von_mises") for tail in ("", "_x", "_depth")}
-NEEDS[("graded_tangential", "peak_validity")] = {"k": 0.0}
+#: what a variable needs beyond the minimal recipe: the graded peaks are solved at k = 0 (or, for the normal and
+#: adhesive load, nu = 1/(2+k)); the minimal recipes take the defaults k = 0.5, nu = 0.3
+NEEDS = {(scenario, f"{field}_peak{tail}"): {"k": 0.0} for scenario, position in (
+    ("graded_tangential", "_x"), ("graded_normal", "_rho"), ("graded_adhesive", "_rho"))
+    for field in ("tau_max", "von_mises") for tail in ("", position, "_depth")}
+NEEDS.update({(scenario, "peak_validity"): {"k": 0.0}
+              for scenario in ("graded_tangential", "graded_normal", "graded_adhesive")})
 
 
 def test_every_declared_variable_can_be_requested():

@@ -106,7 +106,13 @@ def test_adhesive_edge_is_flagged_unbounded_and_the_interior_finite():
     ({"k": 0.5, "nu": 0.3, "z": 0.5}, "z is given, but nu = 0.3 with k = 0.5 is not solved below the surface"),
     ({"k": 0.5, "poisson": "holl_ratio", "z": 0.5, "profile": "tabulated", "profile_r": [0.0, 1e-3, 2e-3, 3e-3],
       "profile_f": [0.0, 2.5e-5, 1e-4, 2.25e-4]},
-     "z is given, but profile = 'tabulated' is not solved below the surface"),
+     "z is given, but profile = 'tabulated' is solved below the surface at k = 0 only: at k > 0 the area integral "
+     "of the point-load field needs the pressure at every radial node"),
+    ({"k": 0.5, "poisson": "holl_ratio", "profile": "tabulated", "profile_r": [0.0, 1e-3, 2e-3, 3e-3],
+      "profile_f": [0.0, 2.5e-5, 1e-4, 2.25e-4], "variables": "tau_max_peak"},
+     "tau_max_peak is asked for, but profile = 'tabulated' is solved below the surface at k = 0 only"),
+    ({"k": 0.5, "nu": 0.3, "variables": "von_mises_peak"},
+     "von_mises_peak is asked for, but nu = 0.3 with k = 0.5 is not solved below the surface"),
     ({"k": 0.0, "z": -0.5}, "z = -0.5 must be a number in [0, 1000000]"),
     ({"scenario": "graded_tangential", "k": 0.5, "poisson": "holl_ratio", "z": 0.2, "x": 0.5},
      "z or x is given with k = 0.5: below the surface under tangential load the graded family solves k = 0"),
@@ -128,3 +134,45 @@ def test_unsupported_cases_and_negative_depth_exit_2_in_one_line(tmp_path, capsy
     err = capsys.readouterr().err
     assert expect in err and "Traceback" not in err and len(err.strip().splitlines()) == 2
     assert not (tmp_path / "x.nc").exists()
+
+
+TABLE_R = np.linspace(0.0, 2e-3, 13)
+#: r^1.5 samples: a table that no closed form reproduces
+TABLE = {"profile": "tabulated", "profile_r": TABLE_R.tolist(), "profile_f": (R * (TABLE_R / R) ** 1.5).tolist()}
+
+
+def test_tabulated_profile_at_k0_equals_the_axisymmetric_scenario_of_the_same_table():
+    """k = 0: graded_normal with a table and z gives finite stresses flagged 0, equal to the axisymmetric
+    scenario of the same samples at the graded depth d (its own contact radius by bisection on d, physical
+    units: E = E0, so E* = c_N*) within the superposition's accuracy."""
+    rho, z = [0.0, 0.3, 0.8, 1.4], [1e-3, 0.5, 2.0]
+    g = sf.generate({"scenario": "graded_normal", "parameters": {
+        "E0": E0, "contact_radius": A_RAD, "c0": 1e-3, **TABLE, "k": 0.0, "nu": 0.3, "rho": rho, "z": z},
+        "output": {"variables": ["depth", "normal_force", *STRESS, "stress_validity"]}}).compute()
+    assert np.all(g.stress_validity.values == 0)
+    for n in STRESS:
+        assert np.all(np.isfinite(g[n].values)), n
+    ax = sf.generate({"scenario": "axisymmetric", "parameters": {
+        **TABLE, "nu": 0.3, "E": E0, "delta": float(g.depth), "y": 0.0, "x": [v * A_RAD for v in rho],
+        "z": [v * A_RAD for v in z]}, "output": {"variables": ["contact_radius", "sigma_xx", "sigma_yy", "sigma_zz",
+                                                               "sigma_xz", "tau_max"]}}).compute()
+    assert float(ax.contact_radius) == pytest.approx(A_RAD, rel=1e-9)
+    pm = float(g.normal_force) / (math.pi * A_RAD ** 2)
+    for mine, theirs in (("sigma_rr", "sigma_xx"), ("sigma_tt", "sigma_yy"), ("sigma_zz", "sigma_zz"),
+                         ("sigma_rz", "sigma_xz"), ("tau_max", "tau_max")):
+        np.testing.assert_allclose(g[mine].transpose("z", "rho").values, ax[theirs].transpose("z", "x").values,
+                                   rtol=0, atol=1e-8 * pm, err_msg=mine)
+
+
+@pytest.mark.parametrize("scenario,extra,names", [
+    ("graded_adhesive", {"delta_gamma": 0.4, "rho": [0.3, 0.8, 1.4]}, STRESS),
+    ("graded_tangential", {"fx": 0.4, "mu": 0.3, "x": [-0.8, 0.3, 1.4]}, ["sigma_xx", "sigma_zz", "sigma_xz"]),
+])
+def test_tabulated_profile_at_k0_below_the_surface_is_finite_and_valid(scenario, extra, names):
+    ds = sf.generate({"scenario": scenario, "parameters": {
+        "E0": E0, "contact_radius": A_RAD, "c0": 1e-3, **TABLE, "k": 0.0, "nu": 0.3, "z": [1e-3, 0.5, 2.0], **extra},
+        "output": {"variables": [*names, "stress_validity"]}}).compute()
+    assert np.all(ds.stress_validity.values == 0)
+    for n in names:
+        assert np.all(np.isfinite(ds[n].values)) and np.any(ds[n].values != 0.0), n
+    assert "axisymmetric family's spline" in ds[names[0]].attrs["stressfields_method"]

@@ -73,8 +73,9 @@ MATERIAL = (E0, C0, NU, K)
 #: below the surface (docs/theory/graded.md section 10): solved for k = 0 (any nu) and for k > 0 with
 #: nu = 1/(2+k), which `poisson = "holl_ratio"` sets
 Z = Parameter("z", "depth below the surface divided by the contact radius a (0: the surface); given, the "
-              "stress variables are computed below the surface, for k = 0 (any nu) or nu = 1/(2+k), for the "
-              "power-law profiles (parabolic, conical, power_law)", low=0.0, high=1e6, label="depth z / a", axis="Z")
+              "stress variables are computed below the surface, for k = 0 (any nu, every profile) or nu = "
+              "1/(2+k) (the power-law profiles: parabolic, conical, power_law)", low=0.0, high=1e6,
+              label="depth z / a", axis="Z")
 # no default: a recipe without it is recorded (and hashed) as before the choice existed
 POISSON_N = Parameter("poisson", "Poisson's ratio: 'given' (the parameter nu; also when omitted) or 'holl_ratio' "
                       "(nu = 1/(2+k), following a sweep of k: the case solved below the surface at k > 0)", kind=STR,
@@ -111,7 +112,8 @@ def stress_variables(dims: tuple[str, ...], adhesive: bool) -> tuple[Variable, .
         Variable("stress_validity", "validity of the stress variables at the point", dims=dims, dtype="int8",
                  always=True, **declare(STRESS_CODES, where={
                      V.unbounded_at_singular_point: f"{edge}the centre r = 0 at z = 0 where the pressure is "
-                                                    "unbounded: the cone at k = 0, a power law with n + k <= 1"},
+                                                    "unbounded: the cone (or a tabulated tip of nonzero slope) at "
+                                                    "k = 0, a power law with n + k <= 1"},
                      note="Only the stress variables in this file are considered."),
                  label="validity of the stresses"),
     )
@@ -168,9 +170,12 @@ def _peaks(names, p, options, **extra) -> dict:
 
 
 def _depth_problems(values) -> list[str]:
-    """With `z` given: the (k, nu) and the profile must be solved below the surface (one line)."""
-    if values.get("z") is None:
+    """With `z` given or a peak asked for: the (k, nu) and the profile must be solved below the surface (one
+    line)."""
+    peaks = [n for n in getattr(values, "variables", ()) if n.endswith("_peak") or "_peak_" in n]
+    if values.get("z") is None and not peaks:
         return []
+    what = "z is given" if values.get("z") is not None else f"{peaks[0]} is asked for"
     from ..physics.graded import holl_ratio
     from ..physics.graded.interior import check_supported
 
@@ -179,7 +184,7 @@ def _depth_problems(values) -> list[str]:
     try:
         check_supported(g["k"], nu, values.get("profile", PROFILE.default))
     except ValueError as exc:
-        return [f"z is given, but {exc}"]
+        return [f"{what}, but {exc}"]
     return []
 
 
@@ -593,9 +598,6 @@ def _check_tangential(values, physical, options):
     if what and np.any(np.asarray(values.get("k")) > 0.0):
         problems.append(f"{what} with k = {float(np.max(values['k']))!r}: below the surface under tangential "
                         "load the graded family solves k = 0")
-    elif what and values.get("profile") == "tabulated":
-        problems.append(f"{what} with profile = 'tabulated': below the surface under tangential load the "
-                        "graded family solves the parabolic, conical and power-law profiles at k = 0")
     if values.get("uncoupled_approximation") == "flag" or values.get("body2") == "identical":
         return problems
     from ..physics import graded as gp

@@ -226,9 +226,13 @@ def test_unsupported_cases_and_negative_depth_are_refused_in_one_line():
     with pytest.raises(ValueError, match=r"nu = 0\.3 with k = 0\.5 is not solved below the surface.*holl_ratio"):
         _stress(0.5, 0.5, k=0.5, nu=0.3)
     r = np.linspace(0.0, 2e-3, 8)
-    for k, nu in ((0.0, 0.3), (0.5, 0.4)):
-        with pytest.raises(ValueError, match=r"profile = 'tabulated' is not solved below the surface"):
+    for k, nu in ((0.5, 0.4), (0.5, 0.3)):
+        with pytest.raises(ValueError, match=r"profile = 'tabulated' is solved below the surface at k = 0 only: "
+                                             r".*pressure at every radial node.*here k = 0\.5$"):
             _stress(0.5, 0.5, k=k, nu=nu, profile=gp.Indenter.tabulated(r, r ** 2 / (2 * R)))
+    clamped = gp.Indenter("tabulated", (), gp.Tabulated(r, r ** 2 / (2 * R), slope_at_0=0.0))
+    with pytest.raises(ValueError, match=r"slope_at_0 set is not solved below the surface.*\(slope_at_0 = 0\.0\)$"):
+        _stress(0.5, 0.5, k=0.0, nu=0.3, profile=clamped)
     with pytest.raises(ValueError, match=r"z = -0\.1 is outside the allowed range z >= 0"):
         _stress(0.5, -0.1, k=0.0, nu=0.3)
 

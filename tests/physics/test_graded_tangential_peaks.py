@@ -62,10 +62,10 @@ def test_the_conical_tip_is_an_unbounded_peak():
     assert float(got["tau_max_peak_x"]) == 0.0 and int(got["peak_validity"]) == 1
 
 
-def test_k_above_zero_and_tabulated_profiles_are_refused():
+def test_k_above_zero_and_clamped_tabulated_profiles_are_refused():
     with pytest.raises(ValueError, match=r"k = 0\.5 is not solved below the surface under tangential load"):
         tangential_peaks(PARA, a=A0, fx=0.5, mu=0.3, k=0.5, nu=0.4, E0=E0, c0=C0)
     r = np.linspace(0.0, 2e-3, 8)
-    with pytest.raises(ValueError, match=r"profile = 'tabulated' is not solved below the surface"):
-        tangential_peaks(gp.Indenter.tabulated(r, r ** 2 / (2 * R)), a=A0, fx=0.5, mu=0.3, k=0.0, nu=0.3, E0=E0,
-                         c0=C0)
+    clamped = gp.Indenter("tabulated", (), gp.Tabulated(r, r ** 2 / (2 * R), slope_at_0=0.0))
+    with pytest.raises(ValueError, match=r"slope_at_0 set is not solved below the surface"):
+        tangential_peaks(clamped, a=A0, fx=0.5, mu=0.3, k=0.0, nu=0.3, E0=E0, c0=C0)

@@ -47,11 +47,15 @@ INTERIOR = STRESS + ("von_mises",) + PRINCIPAL + ("tau_max",)
 UNRESOLVED = Validity.not_resolved_below_the_surface
 #: nu is Holl's ratio 1/(2+k) to this relative tolerance (as ``material.tangential_decoupled``)
 _HOLL_RTOL = 1e-9
-SUPPORTED = ("below the surface the graded family solves k = 0 (any nu) and k > 0 with nu = 1/(2+k) "
-             "(poisson = 'holl_ratio'), for the parabolic, conical and power-law profiles")
-#: why a tabulated profile is refused below the surface (docs/theory/graded.md section 10, Limits)
-_TABULATED = ("its spline's pressure is known only by the quadrature of (G17), whose end conditions differ from "
-              "the axisymmetric family's at k = 0 and which would be needed at every radial node at k > 0")
+SUPPORTED = ("below the surface the graded family solves k = 0 (any nu; every profile) and k > 0 with "
+             "nu = 1/(2+k) (poisson = 'holl_ratio'; the parabolic, conical and power-law profiles)")
+#: why a tabulated profile is refused below the surface at k > 0 (docs/theory/graded.md section 10, Limits)
+_TABULATED = ("profile = 'tabulated' is solved below the surface at k = 0 only: at k > 0 the area integral of "
+              "the point-load field needs the pressure at every radial node of its rule, which a spline has only "
+              "by the quadrature of (G17) (no shape S(rho) to interpolate)")
+#: why a spline with a clamped slope at the tip is refused below the surface
+_CLAMPED = ("a tabulated profile with slope_at_0 set is not solved below the surface: its spline's end condition "
+            "at r = 0 differs from the not-a-knot spline of the axisymmetric family, whose interior serves k = 0")
 
 
 def supported(k, nu):
@@ -60,23 +64,31 @@ def supported(k, nu):
     return (k == 0.0) | np.isclose(nu, 1.0 / (2.0 + k), rtol=_HOLL_RTOL, atol=0.0)
 
 
-def check_supported(k, nu, kind: str) -> None:
+def check_supported(k, nu, kind: str, slope_at_0=None) -> None:
     """ValueError (one line, naming the first unsupported value and the supported cases) unless every
-    (k, nu) is solved and the profile is a power law."""
+    (k, nu) is solved for the profile ``kind``: a power law at k = 0 or nu = 1/(2+k), a tabulated profile
+    at k = 0 and without a clamped tip slope (``slope_at_0`` of :class:`~.profiles.Tabulated`)."""
     k, nu = np.broadcast_arrays(np.asarray(k, dtype=float), np.asarray(nu, dtype=float))
+    if kind == "tabulated":
+        if slope_at_0 is not None:
+            raise ValueError(f"{_CLAMPED} (slope_at_0 = {slope_at_0!r})")
+        if np.any(k != 0.0):
+            raise ValueError(f"{_TABULATED}; here k = {float(k[k != 0.0].flat[0])!r}")
     ok = supported(k, nu)
     if not np.all(ok):
         kb, nb = float(k[~ok].flat[0]), float(nu[~ok].flat[0])
         raise ValueError(f"nu = {nb!r} with k = {kb!r} is not solved below the surface: {SUPPORTED}; "
                          f"here 1/(2+k) = {1.0 / (2.0 + kb):.12g}")
-    if kind == "tabulated":
-        raise ValueError(f"profile = 'tabulated' is not solved below the surface ({_TABULATED}): {SUPPORTED}")
 
 
 def _axisymmetric_profile(profile: Indenter, geometry):
-    """The axisymmetric family's profile of a power law (tabulated profiles are refused by ``check_supported``)."""
+    """The axisymmetric family's profile of the same shape.  A tabulated profile maps to the axisymmetric
+    spline through the same samples: both are the not-a-knot cubic spline of f - f[0] (a clamped tip slope
+    is refused by ``check_supported``), so at k = 0 the pressures agree (G57)."""
     from .. import axisymmetric as ax
 
+    if profile.kind == "tabulated":
+        return ax.tabulated(*profile.table.samples)
     if profile.kind == "parabolic":
         return ax.paraboloid(geometry[0])
     if profile.kind == "conical":
@@ -100,7 +112,7 @@ def interior_fields(names: Sequence[str], profile: Indenter, *, a, rho, z, k, nu
         return {}
     shape, (A, RHO, Z, K, NU, E, C0, DG, *G) = _flat(profile, z, a, rho, z, k, nu, E0, c0,
                                                      0.0 if delta_gamma is None else delta_gamma)
-    check_supported(K, NU, profile.kind)
+    check_supported(K, NU, profile.kind, _slope_at_0(profile))
     flat = Indenter(profile.kind, tuple(G), profile.table)
     mat = dict(k=K, nu=NU, E0=E, c0=C0)
     if delta_gamma is None:
@@ -127,6 +139,11 @@ def interior_fields(names: Sequence[str], profile: Indenter, *, a, rho, z, k, nu
         T[c][deep] = np.where(np.isfinite(T[c][deep]), T[c][deep], np.nan)
     out = _invariants(names, T, flat, A, RHO, Z, K, NU, DG)
     return {n: v.reshape(shape) for n, v in out.items()}
+
+
+def _slope_at_0(profile: Indenter):
+    """The clamped tip slope of a tabulated profile's spline (None: not-a-knot, or a power law)."""
+    return None if profile.table is None else profile.table.slope_at_0
 
 
 def _known(names, allowed) -> list[str]:
@@ -346,14 +363,14 @@ def tangential_interior_fields(names: Sequence[str], profile: Indenter, *, a, x,
 
 
 def _check_tangential(K, profile: Indenter) -> None:
-    """One line unless every k is 0 and the profile a power law (the cases solved under tangential load)."""
+    """One line unless every k is 0 and a tabulated profile's spline is not-a-knot (the cases solved under
+    tangential load: every profile at k = 0, a spline as the axisymmetric family's, ``_axisymmetric_profile``)."""
     K = np.asarray(K, dtype=float)
     if np.any(K != 0.0):
         raise ValueError(f"k = {float(K[K != 0.0][0])!r} is not solved below the surface under tangential load: "
                          "the graded family solves k = 0 there")
-    if profile.kind == "tabulated":
-        raise ValueError("profile = 'tabulated' is not solved below the surface under tangential load: the "
-                         "parabolic, conical and power-law profiles at k = 0")
+    if _slope_at_0(profile) is not None:
+        raise ValueError(f"{_CLAMPED} (slope_at_0 = {_slope_at_0(profile)!r})")
 
 
 def _profile_groups(flat: Indenter, G, size: int):

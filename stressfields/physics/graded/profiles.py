@@ -120,6 +120,10 @@ class Tabulated:
         if r[0] != 0.0 or not np.all(np.diff(r) > 0) or not np.all(np.isfinite(f)):
             raise ValueError("r must start at 0 and increase strictly; f must be finite")
         bc = "not-a-knot" if slope_at_0 is None else ((1, float(slope_at_0)), "not-a-knot")
+        # the samples and the end condition: with slope_at_0 None the spline is the axisymmetric family's
+        # (``axisymmetric.tabulated``, not-a-knot through f - f[0] too), whose interior serves k = 0
+        self.samples = r.copy(), f.copy()
+        self.slope_at_0 = None if slope_at_0 is None else float(slope_at_0)
         self.r_max = float(r[-1])
         self.breaks = r[1:-1].copy()
         from scipy.interpolate import CubicSpline   # here: its import (0.1 s) only for tabulated profiles

@@ -62,7 +62,7 @@ def resolve(profile_kind: str, method: str, rtol: float, *, group: str = "surfac
         surface = CLOSED, _CLOSED_ACCURACY
     if group == "surface" or k is None:
         return surface
-    below = resolve_interior(k, rtol)
+    below = resolve_interior(k, rtol, profile_kind)
     return f"{surface[0]}; below the surface: {below[0]}", f"{surface[1]}; below the surface: {below[1]}"
 
 
@@ -70,15 +70,23 @@ def resolve(profile_kind: str, method: str, rtol: float, *, group: str = "surfac
 #: routes, k > 0 with nu = 1/(2+k) the 2-D quadrature of the radial point-load field
 INTERIOR_HOMOGENEOUS = ("k = 0: the homogeneous interior (closed forms: paraboloid, cone; else the 1-D "
                         "superposition of flat punches)")
+#: a tabulated profile at k = 0: the axisymmetric spline through the same samples (the same not-a-knot spline)
+INTERIOR_TABULATED = ("k = 0: the homogeneous interior of the axisymmetric family's spline through the same samples "
+                      "(the 1-D superposition of flat punches)")
 INTERIOR_HOLL = ("k > 0, nu = 1/(2+k): 2-D quadrature of the radial point-load field over the contact (Gauss "
                  "rules, orders from rtol)")
 
 
-def resolve_interior(k, rtol: float) -> tuple[str, str]:
-    """(route, accuracy) of the stress below the surface for the grading exponents ``k`` of a recipe."""
+def resolve_interior(k, rtol: float, profile_kind: str = "parabolic") -> tuple[str, str]:
+    """(route, accuracy) of the stress below the surface for the grading exponents ``k`` of a recipe and its
+    profile kind (a tabulated profile has no closed form: the superposition's accuracy alone)."""
     k = [float(v) for v in np.ravel(k)]
     routes, acc = [], []
-    if any(v == 0.0 for v in k):
+    if any(v == 0.0 for v in k) and profile_kind == "tabulated":
+        routes.append(INTERIOR_TABULATED)
+        acc.append(f"k = 0: |error| <= rtol * max(|value|, p_m), rtol = {rtol:g}, p_m the mean contact pressure "
+                   "(superposition)")
+    elif any(v == 0.0 for v in k):
         routes.append(INTERIOR_HOMOGENEOUS)
         acc.append("k = 0: " + _CLOSED_ACCURACY + " (closed forms) or |error| <= rtol * max(|value|, p_m) "
                    "(superposition)")
