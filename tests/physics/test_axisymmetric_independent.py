@@ -63,7 +63,9 @@ def _profiles():
     R = 1.7
     return [("power_law_4", ax.power_law(1.0 / (4 * R ** 3), 4.0)),
             ("power_law_2.5", ax.power_law(0.8, 2.5)),
-            ("tabulated_hyperboloid", ax.tabulated(RT, np.sqrt(RT ** 2 + 0.3 ** 2) - 0.3))]
+            # the tabulated row costs ~5 s of a quick run: CI runs it with the slow tests
+            pytest.param("tabulated_hyperboloid", ax.tabulated(RT, np.sqrt(RT ** 2 + 0.3 ** 2) - 0.3),
+                         marks=pytest.mark.slow)]
 
 
 @pytest.mark.parametrize("name,profile", _profiles(), ids=lambda v: v if isinstance(v, str) else "")

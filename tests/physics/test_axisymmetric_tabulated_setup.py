@@ -150,6 +150,7 @@ def test_fast_table_against_the_exact_sums(shape, monkeypatch):
 
 # -- 1e4 samples ---------------------------------------------------------------------------------------
 
+@pytest.mark.slow          # ~2 s: CI runs it with the slow tests
 def test_ten_thousand_samples_are_accepted_and_agree_with_the_closed_form():
     """A paraboloid f = r^2/(2R) sampled at 1e4 radii is its own spline up to rounding: the surface
     stresses of the tabulated route meet the Hertz closed form (A5) within rtol max(p_m, |value|)."""
@@ -211,7 +212,7 @@ def graded_cases():
     return F, np.array([_stick_reference(x) for x in F])
 
 
-@pytest.mark.parametrize("samples", [41, 10000])
+@pytest.mark.parametrize("samples", [41, pytest.param(10000, marks=pytest.mark.slow)])
 def test_graded_stick_radius_against_the_closed_form(samples, graded_cases):
     F, ref = graded_cases
     rt = np.linspace(0.0, 1.0, samples)

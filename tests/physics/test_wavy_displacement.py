@@ -60,7 +60,8 @@ def flamant(x, z, D, a, nu):
     return float(ux), float(uz)
 
 
-@pytest.mark.parametrize("w, profile", [(1e-3, F1), (0.3, F2), (0.9, F2), (0.5, F11)])
+@pytest.mark.parametrize("w, profile", [(1e-3, F1), (0.3, F2), pytest.param(0.9, F2, marks=pytest.mark.slow),
+                                        (0.5, F11)])
 def test_against_flamant_quadrature(w, profile):
     """About 50 points over the four cases, depths 1e-9 a to 5 lambda_1, inside and outside the contact."""
     mp.mp.dps = 20
