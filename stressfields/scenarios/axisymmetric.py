@@ -381,14 +381,38 @@ def _evaluate(kind: str | None, declared: Mapping[str, Variable]):
         if any(n in ax.PEAKS for n in names):
             out.update(peak_values(names, p, options, profile, a))
         if local:
-            # per unit E* (the kernels' own unit): the scales follow
+            # per unit E* (the kernels' own unit): the scales follow, then the invariants
             values, _ = ax.fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a,
                                   nu=_f(p, "nu"), mu=_f(p, "mu"), ux0=_f(p, "ux0"), stick=stick,
-                                  method=options["method"], rtol=options["rtol"])
+                                  method=options["method"], rtol=options["rtol"], invariants=False)
             out.update(values)
-        return apply_scales(out, declared, case, physical)
+        return scaled_fields(out, names, declared, case, physical)
 
     return evaluate
+
+
+def scaled_fields(values: dict, names, declared: Mapping[str, Variable], case, physical: bool) -> dict:
+    """``values`` in their variables' units (``apply_scales``) and the invariants asked for in
+    ``names`` formed from the scaled stress tensor (``physics.axisymmetric.stress_invariants``).
+
+    ``values`` holds what ``fields`` / ``history_fields`` return with ``invariants=False``: the six
+    stress components and "singular" where invariants were asked for, and the other values' validity
+    flag.  The invariants of the tensor in the variables' units are not the scaled invariants per unit
+    E* to the last bit: formed here, they keep the tensor's rounding, as the stress components do."""
+    from ..physics import axisymmetric as ax
+
+    values = dict(values)
+    singular = values.pop("singular", None)
+    out = apply_scales(values, declared, case, physical)
+    inv = [n for n in ax.INVARIANTS if n in names]
+    if inv:
+        factor = declared["sigma_xx"].scale.factor(case, physical)   # the tensor's, which the remainder takes
+        out.update(ax.stress_invariants(inv, out, singular, factor,
+                                        validity=out["validity"] if "validity" in names else None))
+        for s in ax.STRESS:
+            if s not in names:
+                del out[s]
+    return out
 
 
 def peak_values(names, p, options, profile, a) -> dict:

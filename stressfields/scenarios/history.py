@@ -23,9 +23,8 @@ import numpy as np
 from ..physics.names import AXISYMMETRIC_METHODS, PRINCIPAL, STRESS
 from .axisymmetric import (A, DELTA, DEPTH, E, MU, MU_FN, MU_FN_DELTA, N, NORMAL_FORCE, NU, PROFILE_F, PROFILE_R, R,
                            RADIUS_A, REFERENCE, THETA, X, Y, Z, case_of, check_depth, contact, grouped, make_profile,
-                           route_of, surface_point, variables)
+                           route_of, scaled_fields, surface_point, variables)
 from .base import ARRAY, INT, STR, Parameter, Scenario, Variable
-from .scales import apply_scales
 
 HISTORY = Parameter("ux0_history", "tangential rigid-body displacements u_x0 divided by the indentation depth "
                     "delta, in order, starting from the unloaded state u_x0 = 0 (each step is reached "
@@ -108,13 +107,14 @@ def evaluate(names, p, options):
         out["ux0"] = np.asarray(p["amplitude"], dtype=float) * history[np.asarray(p["step"], dtype=np.int64)]
     local = [n for n in names if n in ax.HISTORY_FIELDS]
     if local:
-        # per unit E* (the kernels' own unit): the scales follow
+        # per unit E* (the kernels' own unit): the scales follow, then the invariants
         values, _ = ax.history_fields(local, profile, *surface_point(p, physical, a, ("x", "y", "z")), a=a,
                                       nu=np.asarray(p["nu"], dtype=float), mu=np.asarray(p["mu"], dtype=float),
                                       amplitude=np.asarray(p["amplitude"], dtype=float), history=p["ux0_history"],
-                                      step=p["step"], method=options["method"], rtol=options["rtol"])
+                                      step=p["step"], method=options["method"], rtol=options["rtol"],
+                                      invariants=False)
         out.update(values)
-    return apply_scales(out, DECLARED, case_of(p, profile, a), physical)
+    return scaled_fields(out, names, DECLARED, case_of(p, profile, a), physical)
 
 
 _ROUTE = route_of(default=PROFILE.default)

@@ -9,11 +9,12 @@ in docs/theory/axisymmetric.md (A1)-(A98), below the surface in docs/theory/inte
 NumPy/SciPy; results divided by E*.
 
 ``fields`` (and ``history_fields`` for tangential loading histories) computes every field of a
-scenario in one call; ``routes`` is the one table of which profiles have closed forms and
+scenario in one call (``stress_invariants`` forms the stress invariants, from a tensor in any
+unit); ``routes`` is the one table of which profiles have closed forms and
 what the methods (``auto``, ``closed``, ``quadrature``) mean.
 """
-from .fields import (FIELDS, HISTORY_FIELDS, HISTORY_LOADS, INVARIANTS, PRINCIPAL, STRESS,
-                     contact_radius, fields, history_fields, validity_flag)
+from .fields import (FIELDS, HISTORY_FIELDS, HISTORY_LOADS, INVARIANTS, PRINCIPAL, STRESS, Singular,
+                     contact_radius, fields, history_fields, stress_invariants, validity_flag)
 from .interior import interior_dpdz, interior_stress
 from .interior_tangential import interior_dpdz_tangential, interior_stress_tangential
 from .peaks import PEAKS, peaks
@@ -29,7 +30,7 @@ __all__ = [
     "COMPONENTS", "surface_stress", "surface_dpdz", "stick_radius", "mean_pressure", "min_pressure",
     "interior_stress", "interior_dpdz", "interior_stress_tangential", "interior_dpdz_tangential",
     "STRESS", "PRINCIPAL", "INVARIANTS", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS",
-    "fields", "history_fields",
+    "fields", "history_fields", "stress_invariants", "Singular",
     "contact_radius", "validity_flag",
     "METHODS", "INTERIOR_RTOL", "TANGENTIAL_TIP_RTOL", "tangential_floor",
     "Route", "has_closed_form", "has_interior_closed_form", "resolve",

@@ -29,7 +29,7 @@ dp/dz by a E*/p_m for units of p_m/a).  Pure NumPy/SciPy.
 from __future__ import annotations
 
 import math
-from typing import Callable, Iterable
+from typing import Callable, Iterable, NamedTuple
 
 import numpy as np
 
@@ -49,7 +49,7 @@ from .profiles import Profile
 from .routes import Route, resolve, resolve_depth, resolve_interior
 
 __all__ = ["STRESS", "PRINCIPAL", "INVARIANTS", "FIELDS", "HISTORY_LOADS", "HISTORY_FIELDS", "fields", "history_fields",
-           "contact_radius", "validity_flag"]
+           "stress_invariants", "Singular", "contact_radius", "validity_flag"]
 
 #: validity code of a point below the surface that the 1-D routes do not resolve
 UNRESOLVED = Validity.not_resolved_below_the_surface
@@ -72,7 +72,7 @@ OUTSIDE, STICK, SLIP, NO_TRACTION = 0, 1, 2, 3
 
 @quiet
 def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, ux0, stick=None,
-           method: str = "auto", rtol: float = 1e-10) -> tuple[dict[str, np.ndarray], Route]:
+           method: str = "auto", rtol: float = 1e-10, invariants: bool = True) -> tuple[dict[str, np.ndarray], Route]:
     """The requested fields on the surface (z = 0) and below it (z > 0) under normal load and
     monotonic Cattaneo–Mindlin tangential load, and the route taken (``routes.resolve_depth``).
 
@@ -101,6 +101,12 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
         c of ux0 (A32)-(A33).
     method : "auto", "closed" or "quadrature" (``routes.resolve``); rtol : accuracy of the
         quadrature route.
+    invariants : True: the invariants asked for are formed here, per unit E*.  False: they are
+        not; instead the six stress components, "singular" (a ``Singular``: what their limits
+        need where a component is infinite) and a validity flag of the other values are
+        returned, for ``stress_invariants`` to form the invariants (and complete the flag) from
+        the tensor in the caller's units: the invariants of the scaled tensor, not the scaled
+        invariants, to the last bit.
 
     A flat punch sticks whole or slides; sticking (c = a with u_x0 > 0 and mu > 0) its traction is
     the sliding one with mu E* delta replaced by G* u_x0 (paper eq. 20; docs/theory/axisymmetric.md
@@ -108,12 +114,13 @@ def fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a,
     stick radius and the region flag keep c = a.
     """
     return _pipeline(_known(names, FIELDS), profile, x, y, z, Monotonic(profile, ux0, stick), a=a, nu=nu, mu=mu,
-                     method=method, rtol=rtol)
+                     method=method, rtol=rtol, invariants=invariants)
 
 
 @quiet
 def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, z=None, *, a, nu, mu, amplitude,
-                   history, step, method: str = "auto", rtol: float = 1e-10) -> tuple[dict[str, np.ndarray], Route]:
+                   history, step, method: str = "auto", rtol: float = 1e-10,
+                   invariants: bool = True) -> tuple[dict[str, np.ndarray], Route]:
     """The requested fields after step ``step`` of the tangential displacement history
     u_x0/delta = ``amplitude`` * ``history``, at constant normal load (MDR springs with memory,
     Mindlin–Deresiewicz; docs/theory/axisymmetric.md (A65)-(A77), ``history``), and the route.
@@ -130,7 +137,7 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, z=Non
 
     ``history``: the values u_x0/delta, in order, from the unloaded start; ``step``: integer
     indices into it.  a, nu, mu, amplitude, step, x, y and z broadcast (x, y may be None when
-    no surface field is requested).  Units, ``method`` and ``rtol`` as for ``fields``.  The
+    no surface field is requested).  Units, ``method``, ``rtol`` and ``invariants`` as for ``fields``.  The
     outputs have the broadcast shape of all arguments.
 
     ``z``: depth below the surface (z >= 0; None: 0).  Where z > 0 the fields are the normal
@@ -150,7 +157,7 @@ def history_fields(names: Iterable[str], profile: Profile, x=None, y=None, z=Non
         if any(n in DISPLACEMENTS for n in names):
             raise ValueError("history_fields: the flat punch has no history route")
     return _pipeline(names, profile, x, y, z, History(profile, amplitude, history, step), a=a, nu=nu, mu=mu,
-                     method=method, rtol=rtol)
+                     method=method, rtol=rtol, invariants=invariants)
 
 
 def contact_radius(profile: Profile, delta) -> np.ndarray:
@@ -175,20 +182,32 @@ def _below(names, z) -> bool:
 
 
 def _pipeline(names: list[str], profile: Profile, x, y, z, load, *, a, nu, mu, method: str,
-              rtol: float) -> tuple[dict[str, np.ndarray], Route]:
+              rtol: float, invariants: bool) -> tuple[dict[str, np.ndarray], Route]:
     """The fields ``names`` of the load ``load`` (``loading.Monotonic`` or ``loading.History``) and
     the route: the surface values where z = 0 (or z is None), the interior ones where z > 0, one
-    merge, one validity flag, then the displacements (surface and interior alike)."""
+    merge, one validity flag, then the displacements (surface and interior alike).  Asked for
+    invariants, the pipeline computes the whole tensor and its singular points ("singular") and
+    forms them at the end (``stress_invariants``), unless ``invariants`` is False."""
     case = {"a": a, "nu": nu, "mu": mu, **load.arrays}
+    inv = [n for n in INVARIANTS if n in names]
+    asked = names
+    # the validity flag of the other valued fields asked for; ``stress_invariants`` adds the invariants'
+    flagged = [n for n in names if n in _VALUED and n not in INVARIANTS]
+    if inv:
+        names = [n for n in names if n not in INVARIANTS] + [s for s in STRESS if s not in names] + ["singular"]
     rest = [n for n in names if n not in DISPLACEMENTS]
     if _below(rest, z):
-        out, route = _with_depth(rest, profile, x, y, z, case, load, method, rtol)
+        out, route = _with_depth(rest, profile, x, y, z, case, load, method, rtol, flagged)
     else:
-        out, route = _on_surface(rest, profile, x, y, case, load, method, rtol)
+        out, route = _on_surface(rest, profile, x, y, case, load, method, rtol, flagged)
     moved = [n for n in names if n in DISPLACEMENTS]
     if moved:
         out.update(_displacements(moved, profile, x, y, z, case, load,
                                    resolve(profile, method, rtol, group="displacement").kernel, rtol))
+    if inv and invariants:
+        singular = out.pop("singular")
+        out.update(stress_invariants(inv, out, singular, validity=out.get("validity")))
+        out = {n: out[n] for n in asked}
     return out, route
 
 
@@ -198,14 +217,16 @@ def _flat(arrays: dict) -> tuple[tuple[int, ...], dict[str, np.ndarray]]:
     return full[0].shape, {k: v.ravel() for k, v in zip(arrays, full)}
 
 
-def _on_surface(names, profile, x, y, case, load, method, rtol):
+def _on_surface(names, profile, x, y, case, load, method, rtol, flagged=()):
     """The surface (z = 0) fields and the loads, group by group of the load's terms, on the
     broadcast of the case arrays (and x, y where a point field is asked for)."""
     route = resolve(profile, method, rtol)
-    spatial = [n for n in names if n in SPATIAL and n != "validity"]
+    spatial = [n for n in names if n in SPATIAL and n != "validity"] + [n for n in names if n == "singular"]
     shape, P = _flat({**case, **({"x": x, "y": y} if spatial else {})})
     size = int(np.prod(shape, dtype=np.int64))
-    results = {n: np.empty(size, dtype=np.int8 if n == "region" else float) for n in names if n != "validity"}
+    results = {n: np.empty(size, dtype=np.int8 if n == "region" else float) for n in names
+               if n not in ("validity", "singular")}
+    singular = []
     kw = dict(method=route.kernel, rtol=rtol)
     for group in load.groups(P):
         G = {k: v[group.index] for k, v in P.items()}
@@ -218,17 +239,21 @@ def _on_surface(names, profile, x, y, case, load, method, rtol):
                 stress=lambda comps: hist.history_stress(x_, y_, a_, nu_, mu_, profile, components=comps, **on),
                 dpdz=lambda: hist.history_dpdz(x_, y_, a_, nu_, mu_, profile, **on),
                 region=lambda: _region(np.hypot(x_, y_), a_, group.stick, group.free),
-                singular=lambda tensor, i: _singular(profile, tensor, i, x_, y_, a_, nu_, mu_,
-                                                     group.gross_weight() * mu_)))
+                singular=lambda i: Singular.at(profile, i, len(x_), x=x_, y=y_, a=a_, nu=nu_, mu_kernel=mu_,
+                                               mu_lead=group.gross_weight() * mu_)))
+            if "singular" in part:
+                singular.append(part.pop("singular").moved(group.index, shape))
         for n, v in part.items():
             results[n][group.index] = v
     out = {n: v.reshape(shape) for n, v in results.items()}
+    if "singular" in names:
+        out["singular"] = Singular.join(singular, profile, shape)
     if "validity" in names:
-        out["validity"] = validity_flag(*(out[n] for n in out if n in _VALUED))
+        out["validity"] = validity_flag(*(out[n] for n in flagged))
     return out, route
 
 
-def _with_depth(names, profile, x, y, z, case, load, method, rtol):
+def _with_depth(names, profile, x, y, z, case, load, method, rtol, flagged):
     """The fields where some z > 0: the surface computation (without z, so bit for bit the values
     of z = 0) where z = 0 and for the region and the loads, which do not depend on z; the normal
     interior field plus the terms' tangential ones where z > 0; one merge, one validity flag."""
@@ -237,11 +262,14 @@ def _with_depth(names, profile, x, y, z, case, load, method, rtol):
         raise ValueError("z (depth below the surface) must be >= 0 and not NaN")
     deep = P["z"].reshape(shape) > 0.0
     valued = [n for n in names if n in _VALUED]
-    top = [n for n in names if n != "validity" and (n not in _VALUED or not np.all(deep))]
-    out: dict[str, np.ndarray] = {}
+    top = [n for n in names if n != "validity" and (n not in _VALUED + ("singular",) or not np.all(deep))]
+    out: dict = {}
     if top:
         out, _ = _on_surface(top, profile, x, y, case, load, method, rtol)
-        out = {n: v if n in _VALUED else np.array(np.broadcast_to(v, shape)) for n, v in out.items()}
+        out = {n: v if n in _VALUED else v.broadcast(shape, ~deep) if n == "singular"
+               else np.array(np.broadcast_to(v, shape)) for n, v in out.items()}
+    if "singular" in names and "singular" not in out:
+        out["singular"] = Singular.join([], profile, shape)
     D = {k: v[deep.ravel()] for k, v in P.items()}
     terms = _terms(load, D)
     expo, tangential = getattr(profile, "n", None), bool(terms)
@@ -260,7 +288,7 @@ def _with_depth(names, profile, x, y, z, case, load, method, rtol):
         dpdz=lambda: _add_terms({"dpdz": interior_dpdz(*at, D["nu"], profile, **kw)}, ("dpdz",), terms,
                                 lambda *t: {"dpdz": part(interior_dpdz_tangential)(*t)})["dpdz"],
         region=lambda: None)
-    return _merge_depth(out, below, names, valued, deep, shape), route
+    return _merge_depth(out, below, names, valued, flagged, deep, shape), route
 
 
 def _terms(load, P: dict) -> list[tuple]:
@@ -282,7 +310,7 @@ def _add_terms(normal: dict, keys, terms, tangential: Callable) -> dict:
     return out
 
 
-def _merge_depth(out: dict, below: dict, names, valued, deep: np.ndarray, shape) -> dict:
+def _merge_depth(out: dict, below: dict, names, valued, flagged, deep: np.ndarray, shape) -> dict:
     """The surface values ``out`` where z = 0 and the interior ones ``below`` where z > 0, with one
     validity flag. Below the surface every exact value is finite, so a non-finite one there is a
     point the routes do not resolve (r or z below ~1e-100 a, docs/theory/interior.md section 6):
@@ -294,7 +322,7 @@ def _merge_depth(out: dict, below: dict, names, valued, deep: np.ndarray, shape)
         full[deep] = np.where(np.isfinite(below[n]), below[n], np.nan)
         out[n] = full
     if "validity" in names:
-        flag = validity_flag(*(out[n] for n in valued))
+        flag = validity_flag(*(out[n] for n in flagged))
         unresolved = deep & np.any([~np.isfinite(out[n]) for n in valued], axis=0) if valued else deep & False
         out["validity"] = np.where(unresolved, np.int8(UNRESOLVED), flag).astype(np.int8)
     return out
@@ -323,43 +351,113 @@ def _displacements(names, profile, x, y, z, case, load, method, rtol) -> dict[st
 # -- the point fields ------------------------------------------------------------------------------
 
 def _point_fields(names: list[str], *, stress: Callable[[tuple[str, ...]], dict], dpdz: Callable[[], np.ndarray],
-                  region: Callable[[], np.ndarray], singular: Callable | None = None) -> dict[str, np.ndarray]:
-    """The stress block (the tensor, von Mises (A60), principal stresses, tau_max), dp/dz and the
-    region flag, each computed only if requested; ``stress(components)`` gives the tensor / E*,
-    ``dpdz()`` dp/dz / (E*/length).  Where a component is infinite the invariants are the limits
-    of ``singular(tensor, flat indices)`` -> (lead, rest), see ``_singular`` (A97)."""
-    out: dict[str, np.ndarray] = {}
+                  region: Callable[[], np.ndarray], singular: Callable | None = None) -> dict:
+    """The stress tensor, dp/dz and the region flag, each computed only if requested;
+    ``stress(components)`` gives the tensor / E*, ``dpdz()`` dp/dz / (E*/length).  "singular":
+    ``singular(flat indices)`` -> the ``Singular`` of the points where a component is infinite."""
+    out: dict = {}
     want = [n for n in names if n in STRESS]
-    inv = [n for n in INVARIANTS if n in names]
-    if inv:
-        want = list(STRESS)
     if want:
         tensor = {f"sigma_{k}": v for k, v in stress(tuple(n.removeprefix("sigma_") for n in want)).items()}
         out.update((n, tensor[n]) for n in names if n in STRESS)
-        if "von_mises" in names:
-            out["von_mises"] = von_mises(*(tensor[s] for s in STRESS))
-        if any(n in names for n in PRINCIPAL + ("tau_max",)):
-            s1, s2, s3 = principal_stresses(*(tensor[s] for s in STRESS))
-            out.update((n, v) for n, v in zip(PRINCIPAL, (s1, s2, s3)) if n in names)
-            if "tau_max" in names:
-                out["tau_max"] = 0.5 * (s1 - s3)
-        if inv and singular is not None:
+        if "singular" in names and singular is not None:
             shape = np.broadcast_shapes(*(np.shape(tensor[s]) for s in STRESS))
             infinite = np.zeros(shape, dtype=bool)
             for s in STRESS:
                 infinite |= np.isinf(tensor[s])
-            idx = np.flatnonzero(infinite)
-            if idx.size:
-                lead, rest = singular(tensor, idx)
-                vm, pr = singular_limits(lead, rest)
-                for n, v in zip(INVARIANTS, (vm,) + pr + (_tau_limit(vm, rest),)):
-                    if n in inv:
-                        out[n] = np.array(np.broadcast_to(out[n], shape))
-                        out[n].flat[idx] = v
+            out["singular"] = singular(np.flatnonzero(infinite))
     if "dpdz" in names:
         out["dpdz"] = dpdz()
     if "region" in names:
         out["region"] = region()
+    return out
+
+
+class Singular(NamedTuple):
+    """The points of a result's shape ``shape`` where a stress component is infinite (``index``,
+    flat) and, at each, what the limits of the invariants there need (``_singular``): the point
+    (x, y), a, nu, the kernels' mu and the coefficient of sigma_xz's growth in gross slip."""
+
+    profile: Profile
+    shape: tuple
+    index: np.ndarray
+    x: np.ndarray
+    y: np.ndarray
+    a: np.ndarray
+    nu: np.ndarray
+    mu_kernel: np.ndarray
+    mu_lead: np.ndarray
+
+    @classmethod
+    def at(cls, profile: Profile, idx, size: int, **arrays) -> "Singular":
+        """The points ``idx`` of a flat result of ``size`` points, the ``arrays`` broadcasting to it."""
+        return cls(profile, (size,), idx, *(np.broadcast_to(np.asarray(arrays[k], dtype=float), (size,))[idx]
+                                            for k in cls._fields[3:]))
+
+    @classmethod
+    def join(cls, parts: list, profile: Profile, shape) -> "Singular":
+        """The points of ``parts`` (each of ``shape``, disjoint) together."""
+        empty = np.zeros(0)
+        return cls(profile, tuple(shape), np.concatenate([p.index for p in parts] or [np.zeros(0, dtype=np.int64)]),
+                   *(np.concatenate([getattr(p, k) for p in parts] or [empty]) for k in cls._fields[3:]))
+
+    def moved(self, index: np.ndarray, shape) -> "Singular":
+        """The points of a flat group whose point i is the flat point ``index[i]`` of ``shape``."""
+        return self._replace(shape=tuple(shape), index=index[self.index])
+
+    def broadcast(self, shape, keep=None) -> "Singular":
+        """The points of the result broadcast to ``shape`` (where ``keep``, a boolean of ``shape``)."""
+        shape = tuple(shape)
+        if shape == self.shape and keep is None:
+            return self
+        row = np.full(int(np.prod(self.shape, dtype=np.int64)), -1)
+        row[self.index] = np.arange(self.index.size)
+        src = np.broadcast_to(row.reshape(self.shape), shape).ravel()
+        hit = (src >= 0) if keep is None else (src >= 0) & np.broadcast_to(keep, shape).ravel()
+        rows = src[hit]
+        return type(self)(self.profile, shape, np.flatnonzero(hit), *(getattr(self, k)[rows] for k in self._fields[3:]))
+
+
+def stress_invariants(names: Iterable[str], tensor: dict, singular: Singular | None = None, scale=1.0,
+                      validity=None) -> dict[str, np.ndarray]:
+    """The invariants ``names`` (of ``INVARIANTS``: von Mises (A60), principal stresses, tau_max =
+    (sigma_1 - sigma_3)/2) of the stress tensor ``tensor`` ({"sigma_xx": ..., ...}, broadcasting),
+    the one place they are formed.  Where a component is infinite they are the limits of
+    ``singular_limits`` at the points of ``singular`` (docs/theory/axisymmetric.md (A97)).
+
+    ``scale``: the factor (broadcasting) the tensor has been multiplied by since ``fields`` returned
+    it, whose bounded remainder at a singular point (``_singular``) is scaled alike; the invariants
+    of the scaled tensor are formed, not scaled invariants, so their last bits are the tensor's.
+    ``validity``: a flag of the other values (``fields`` with ``invariants=False``); returned under
+    "validity" with the singular points whose invariants' limits are unknown (NaN) flagged so."""
+    out: dict[str, np.ndarray] = {}
+    comps = [tensor[s] for s in STRESS]
+    if "von_mises" in names:
+        out["von_mises"] = von_mises(*comps)
+    if any(n in names for n in PRINCIPAL + ("tau_max",)):
+        s1, s2, s3 = principal_stresses(*comps)
+        out.update((n, v) for n, v in zip(PRINCIPAL, (s1, s2, s3)) if n in names)
+        if "tau_max" in names:
+            out["tau_max"] = 0.5 * (s1 - s3)
+    shape = np.broadcast_shapes(*(np.shape(c) for c in comps), np.shape(scale))
+    if singular is not None and singular.index.size:
+        at = singular.broadcast(shape)
+        xz = np.broadcast_to(tensor["sigma_xz"], shape).ravel()[at.index]
+        lead, rest = _singular(at, xz, np.broadcast_to(np.asarray(scale, dtype=float), shape).ravel()[at.index])
+        vm, pr = singular_limits(lead, rest)
+        for n, v in zip(INVARIANTS, (vm,) + pr + (_tau_limit(vm, rest),)):
+            if n in out:
+                out[n] = np.array(np.broadcast_to(out[n], shape))
+                out[n].flat[at.index] = v
+    if validity is not None:
+        # the flag of all the values: the other values' flag as a value of its own (0, +-inf or NaN)
+        # with the invariants; a code of its own (a point below the surface that the routes do not
+        # resolve, where the tensor and so the invariants are NaN) stays
+        flag = np.broadcast_to(validity, np.broadcast_shapes(shape, np.shape(validity)))
+        unbounded, undefined = Validity.unbounded_at_singular_point, Validity.undefined_direction_dependent_limit
+        proxy = np.where(flag == unbounded, np.inf, np.where(flag == undefined, np.nan, 0.0))
+        general = (flag == Validity.within_stated_accuracy) | (flag == unbounded) | (flag == undefined)
+        out["validity"] = np.where(general, validity_flag(proxy, *out.values()), flag).astype(np.int8)
     return out
 
 
@@ -376,10 +474,11 @@ def _tau_limit(vm, rest) -> np.ndarray:
     return tau
 
 
-def _singular(profile: Profile, tensor, idx, x, y, a, nu, mu_kernel, mu_lead):
-    """(lead, rest) of the stress tensor lam * lead + rest + o(1), lam -> +inf, at the points
-    ``idx`` (flat indices into the tensor's shape) where a component is infinite; NaN where the
-    limit is not known (docs/theory/axisymmetric.md (A97)).
+def _singular(at: Singular, XZ, SC):
+    """(lead, rest) of the stress tensor lam * lead + rest + o(1), lam -> +inf, at the points of
+    ``at`` where a component is infinite, with ``XZ`` the tensor's sigma_xz there and ``SC`` the
+    factor it has been scaled by (``stress_invariants``); NaN where the limit is not known
+    (docs/theory/axisymmetric.md (A97)).
 
     * Conical or sharper tip r = 0 (g' ~ B u^m, m <= 0): the pressure p ~ lam grows, and
       sigma_rr, sigma_phiphi, sigma_zz -> -p (rho_r, rho_phi, 1) with rho_r = 1 - (1-2nu)/(m+2),
@@ -391,12 +490,10 @@ def _singular(profile: Profile, tensor, idx, x, y, a, nu, mu_kernel, mu_lead):
     * Flat-punch edge r = a (from inside, at the point's own angle): p ~ 1/sqrt(a^2 - r^2) and
       (rr, phiphi, zz) -> -p (1, 2 nu, 1), sigma_xz -> -mu p; remainder (P q/a)(1, -1, 0), P the
       depth/pi, q = 1 - 2 nu (A12), (A29)."""
-    shape = np.broadcast_shapes(*(np.shape(tensor[s]) for s in STRESS))
-    X, Y, A, NU, MU, ML = (np.broadcast_to(np.asarray(v, dtype=float), shape).ravel()[idx]
-                           for v in (x, y, a, nu, mu_kernel, mu_lead))
-    XZ = np.broadcast_to(tensor["sigma_xz"], shape).ravel()[idx]
+    profile = at.profile
+    X, Y, A, NU, MU, ML = at.x, at.y, at.a, at.nu, at.mu_kernel, at.mu_lead
     r = np.hypot(X, Y)
-    n = idx.size
+    n = at.index.size
     lead = np.full((n, 3, 3), np.nan)
     rest = np.full((n, 3, 3), np.nan)
     q = 1.0 - 2.0 * NU
@@ -407,7 +504,7 @@ def _singular(profile: Profile, tensor, idx, x, y, a, nu, mu_kernel, mu_lead):
         block[:, 0, 0], block[:, 1, 1], block[:, 2, 2] = c * c + 2 * NU * s * s, s * s + 2 * NU * c * c, 1.0
         block[:, 0, 1] = block[:, 1, 0] = q * c * s
         block[:, 0, 2] = block[:, 2, 0] = np.where(MU > 0, MU, 0.0)
-        k = q * profile.closed[2] / (math.pi * A)
+        k = SC * q * profile.closed[2] / (math.pi * A)
         tail = np.zeros((n, 3, 3))
         tail[:, 0, 0], tail[:, 1, 1] = k * (c * c - s * s), k * (s * s - c * c)
         tail[:, 0, 1] = tail[:, 1, 0] = 2.0 * k * c * s
