@@ -37,9 +37,8 @@ def _gen(scenario, params, names=NAMES, method=None):
 
 
 def _half_spread(tau, s1, s3):
-    """tau_max = (sigma_1 - sigma_3)/2: formed per unit E* and then scaled, so equal to the half spread of
-    the scaled principal stresses to the rounding of the scale's product (2 eps of the larger one)."""
-    assert np.all(np.abs(tau - (s1 - s3) / 2) <= 2 * np.finfo(float).eps * np.maximum(np.abs(s1), np.abs(s3)))
+    """tau_max = (sigma_1 - sigma_3)/2 exactly: the invariants are formed together from the scaled tensor."""
+    np.testing.assert_array_equal(tau, (s1 - s3) / 2)
 
 
 @pytest.mark.parametrize("kind", sorted(PROFILES))

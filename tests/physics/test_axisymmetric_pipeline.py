@@ -6,10 +6,10 @@ Evidence:
 * a reversal is Mindlin–Deresiewicz, N + T(c_1) - 2 T(c_r) (docs/theory/axisymmetric.md (A69)),
   with the tangential parts T taken from two monotonic loads: the history's terms are summed as
   the superposition says, on the surface (the annulus form of ``history_stress``) and below it;
-* the values are per unit E*, and a scale applied after the invariants leaves them as accurate
-  as before: within 3 ulp of the tensor's Frobenius norm of the exact invariants (mpmath), and
-  within 4 ulp of the invariants of the scaled tensor (the order before the pipeline, where the
-  scale came first: the last bits that moved);
+* the values are per unit E*, and the invariants of a scaled tensor (``invariants=False``, then
+  ``stress_invariants``) are within 3 ulp of the tensor's Frobenius norm of the exact invariants
+  (mpmath); at scale 1 they, and the validity flag, are ``fields``' own to the last bit, singular
+  points included, and at singular points the limits scale with the tensor;
 * no module of the family imports another module's private name.
 """
 from __future__ import annotations
@@ -22,7 +22,6 @@ import numpy as np
 import pytest
 
 from stressfields.physics import axisymmetric as ax
-from stressfields.physics.invariants import principal_stresses, von_mises
 
 NU, MU = 0.3, 0.5
 VALUED = list(ax.STRESS) + ["dpdz", "u_x", "u_y", "u_z"]
@@ -88,47 +87,71 @@ def _frobenius(t):
     return np.sqrt(t[0] ** 2 + t[1] ** 2 + t[2] ** 2 + 2 * (t[3] ** 2 + t[4] ** 2 + t[5] ** 2))
 
 
-def _invariants_per_unit_e_star():
-    x, y, z = _points()
-    values, _ = ax.fields(list(ax.STRESS) + INVARIANTS, ax.paraboloid(1.0), x, y, z, a=1.0, nu=NU, mu=MU, ux0=0.2)
-    return values
-
-
 #: the scales of the scenarios: 1/p_m (normalised, Hertz a = R = 1) and E* (physical, steel)
 SCALES = (3 * np.pi / 4, 210e9 / (1 - 0.3 ** 2))
 
 
-def test_scaled_invariants_are_within_3_ulp_of_the_exact_ones():
-    """s * invariant(T) against the invariants of the exact product s T, in 30 digits (mpmath's
-    symmetric eigenvalue solver): within 3 ulp of |s T|_F (measured 2.5 over 300 points)."""
-    v = _invariants_per_unit_e_star()
-    T = [v[n] for n in ax.STRESS]
+def _scaled_invariants(values, s):
+    """The invariants of ``s`` times the tensor of ``fields(..., invariants=False)``, as the scenarios form them."""
+    tensor = {n: values[n] * s for n in ax.STRESS}
+    return ax.stress_invariants(INVARIANTS, tensor, values["singular"], s)
+
+
+def test_invariants_of_the_scaled_tensor_are_within_3_ulp_of_the_exact_ones():
+    """The invariants of s T against those of the exact product s T, in 30 digits (mpmath's symmetric
+    eigenvalue solver): within 3 ulp of |s T|_F (measured 2.5 over 300 points)."""
+    x, y, z = _points()
+    values, _ = ax.fields(INVARIANTS, ax.paraboloid(1.0), x, y, z, a=1.0, nu=NU, mu=MU, ux0=0.2, invariants=False)
+    T = [values[n] for n in ax.STRESS]
     mp.mp.dps = 30
     for s in SCALES:
+        v = _scaled_invariants(values, s)
         norm = _frobenius([s * t for t in T])
         for i in range(0, T[0].size, 2):
-            xx, yy, zz, xy, xz, yz = (mp.mpf(float(t[i])) * mp.mpf(s) for t in T)
+            xx, yy, zz, xy, xz, yz = (mp.mpf(float(t[i] * s)) for t in T)
             ev = sorted(mp.eigsy(mp.matrix([[xx, xy, xz], [xy, yy, yz], [xz, yz, zz]]))[0], reverse=True)
             vm = mp.sqrt(((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2) / 2 + 3 * (xy ** 2 + xz ** 2 + yz ** 2))
             exact = dict(zip(INVARIANTS, (vm, ev[0], ev[1], ev[2], (ev[0] - ev[2]) / 2)))
             for n in INVARIANTS:
-                err = abs(mp.mpf(float(s * v[n][i])) - exact[n])
+                err = abs(mp.mpf(float(v[n][i])) - exact[n])
                 assert err <= 3 * np.spacing(norm[i]), (n, s, i, float(err / np.spacing(norm[i])))
 
 
-def test_scale_after_the_invariants_moves_them_by_at_most_4_ulp():
-    """The invariants of the scaled tensor (the order before the one pipeline) and the scaled
-    invariants differ by at most 4 ulp of |s T|_F (measured 4 over the recipes of the repository,
-    3 here): each lies within 3 ulp of the exact value, and the two roundings are independent."""
-    v = _invariants_per_unit_e_star()
-    T = [v[n] for n in ax.STRESS]
-    for s in SCALES:
-        sT = [s * t for t in T]
-        s1, s2, s3 = principal_stresses(*sT)
-        before = dict(zip(INVARIANTS, (von_mises(*sT), s1, s2, s3, 0.5 * (s1 - s3))))
-        bound = 4 * np.spacing(_frobenius(sT))
-        for n in INVARIANTS:
-            assert np.all(np.abs(s * v[n] - before[n]) <= bound), n
+#: singular points on the surface: a cone's tip (nu = 1/2 and mu = 0: von Mises' limit is the
+#: remainder's, sigma_xz; partial and gross slip) and a flat punch's edge (nu = 0: the limit of the
+#: principal stress along the hoop direction is the remainder's), with regular points around them
+SINGULAR = {
+    "cone": (ax.cone(0.2), dict(x=np.array([0.0, 0.0, 0.3, 0.7]), y=np.array([0.0]), nu=np.array([[0.5], [0.3]]),
+                                mu=np.array([[[0.0]], [[0.4]]]), ux0=np.array([[[[0.0]]], [[[0.05]]], [[[5.0]]]]))),
+    "flat_punch": (ax.flat_punch(1.0), dict(x=np.array([1.0, 0.6, 0.0, 0.3]), y=np.array([0.0, 0.8, 0.0, 0.0]), nu=np.array([[0.0], [0.3]]),
+                                         mu=np.array([[[0.0]], [[0.3]]]), ux0=np.array([[[[0.0]]], [[[0.05]]]]))),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(SINGULAR))
+def test_invariants_and_validity_of_the_tensor_and_its_singular_points_are_those_of_fields(kind):
+    """``fields`` with ``invariants=False`` then ``stress_invariants`` at scale 1 gives the invariants
+    and the validity flag of ``fields`` bit for bit, singular points (+-inf, finite limits, NaN)
+    included; at a scale s the limits are s times those at scale 1 to rounding, +-inf and NaN alike."""
+    profile, kw = SINGULAR[kind]
+    names = INVARIANTS + ["validity"]
+    whole, _ = ax.fields(names, profile, a=1.0, **kw)
+    parts, _ = ax.fields(names, profile, a=1.0, invariants=False, **kw)
+    assert parts["singular"].index.size > 0
+    formed = ax.stress_invariants(INVARIANTS, parts, parts["singular"], 1.0, validity=parts["validity"])
+    for n in names:
+        np.testing.assert_array_equal(formed[n], whole[n], err_msg=n)
+    # the cases are there: a finite limit (from the remainder) at a point with an infinite component
+    assert np.any([np.isfinite(whole[n]) & (whole["validity"] == 1) for n in INVARIANTS])
+    s = SCALES[1]
+    scaled = _scaled_invariants(parts, s)
+    for n in INVARIANTS:
+        finite = np.isfinite(whole[n])
+        np.testing.assert_array_equal(np.isnan(scaled[n]), np.isnan(whole[n]), err_msg=n)
+        np.testing.assert_array_equal(scaled[n][~finite], whole[n][~finite], err_msg=n)
+        # two roundings of the same value: 4 ulp of the largest (measured 1)
+        np.testing.assert_allclose(scaled[n][finite], s * whole[n][finite], rtol=0.0,
+                                   atol=4 * np.spacing(s * np.max(np.abs(whole[n][finite]))), err_msg=n)
 
 
 def _private_imports(path: Path) -> list[str]:
