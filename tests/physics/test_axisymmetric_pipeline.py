@@ -123,8 +123,9 @@ def test_invariants_of_the_scaled_tensor_are_within_3_ulp_of_the_exact_ones():
 SINGULAR = {
     "cone": (ax.cone(0.2), dict(x=np.array([0.0, 0.0, 0.3, 0.7]), y=np.array([0.0]), nu=np.array([[0.5], [0.3]]),
                                 mu=np.array([[[0.0]], [[0.4]]]), ux0=np.array([[[[0.0]]], [[[0.05]]], [[[5.0]]]]))),
-    "flat_punch": (ax.flat_punch(1.0), dict(x=np.array([1.0, 0.6, 0.0, 0.3]), y=np.array([0.0, 0.8, 0.0, 0.0]), nu=np.array([[0.0], [0.3]]),
-                                         mu=np.array([[[0.0]], [[0.3]]]), ux0=np.array([[[[0.0]]], [[[0.05]]]]))),
+    "flat_punch": (ax.flat_punch(1.0), dict(x=np.array([1.0, 0.6, 0.0, 0.3]), y=np.array([0.0, 0.8, 0.0, 0.0]),
+                                            nu=np.array([[0.0], [0.3]]),
+                                            mu=np.array([[[0.0]], [[0.3]]]), ux0=np.array([[[[0.0]]], [[[0.05]]]]))),
 }
 
 

@@ -15,10 +15,15 @@ monotonic load is a history of one term (``loading``):
    of weight 1 are ``surface.surface_stress`` and ``surface.surface_dpdz``); below it the normal
    interior field (``interior``) plus each term's tangential interior field
    (``interior_tangential``, docs/theory/interior.md (I23), (I33)-(I35));
-3. stresses, their invariants (A60)-(A61) (the limits of ``singular_limits`` at a singular
-   point), dp/dz, the contact-region flag and the displacements (``displacement``: the normal
-   part plus the terms, (I36)-(I44));
-4. one merge of the surface and interior values, and one validity flag.
+3. the stress tensor (and where a component is infinite, a ``Singular``), dp/dz, the
+   contact-region flag and the displacements (``displacement``: the normal part plus the terms,
+   (I36)-(I44));
+4. one merge of the surface and interior values, and one validity flag;
+5. the invariants (A60)-(A61) of the tensor, with the limits of ``singular_limits`` at the
+   singular points: ``stress_invariants``, the one place they are formed.  With
+   ``invariants=False`` the entry points stop before it and the caller forms them from the tensor
+   in its own units (the scenarios: after ``apply_scales``, so they are the invariants of the
+   scaled tensor to the last bit).
 
 Units (as the kernels): lengths (x, y, z, a, the stick radius) in the profile's length unit;
 stresses, von Mises and principal stresses divided by E*, dp/dz divided by E*/length,
@@ -241,13 +246,14 @@ def _on_surface(names, profile, x, y, case, load, method, rtol, flagged=()):
                 region=lambda: _region(np.hypot(x_, y_), a_, group.stick, group.free),
                 singular=lambda i: Singular.at(profile, i, len(x_), x=x_, y=y_, a=a_, nu=nu_, mu_kernel=mu_,
                                                mu_lead=group.gross_weight() * mu_)))
-            if "singular" in part:
-                singular.append(part.pop("singular").moved(group.index, shape))
+            if part.get("singular") is not None:
+                singular.append(part["singular"].moved(group.index, shape))
+            part.pop("singular", None)
         for n, v in part.items():
             results[n][group.index] = v
     out = {n: v.reshape(shape) for n, v in results.items()}
     if "singular" in names:
-        out["singular"] = Singular.join(singular, profile, shape)
+        out["singular"] = Singular.join(singular, shape)
     if "validity" in names:
         out["validity"] = validity_flag(*(out[n] for n in flagged))
     return out, route
@@ -266,10 +272,10 @@ def _with_depth(names, profile, x, y, z, case, load, method, rtol, flagged):
     out: dict = {}
     if top:
         out, _ = _on_surface(top, profile, x, y, case, load, method, rtol)
-        out = {n: v if n in _VALUED else v.broadcast(shape, ~deep) if n == "singular"
+        out = {n: v if n in _VALUED else (v and v.broadcast(shape, ~deep)) if n == "singular"
                else np.array(np.broadcast_to(v, shape)) for n, v in out.items()}
     if "singular" in names and "singular" not in out:
-        out["singular"] = Singular.join([], profile, shape)
+        out["singular"] = None
     D = {k: v[deep.ravel()] for k, v in P.items()}
     terms = _terms(load, D)
     expo, tangential = getattr(profile, "n", None), bool(terms)
@@ -315,11 +321,16 @@ def _merge_depth(out: dict, below: dict, names, valued, flagged, deep: np.ndarra
     validity flag. Below the surface every exact value is finite, so a non-finite one there is a
     point the routes do not resolve (r or z below ~1e-100 a, docs/theory/interior.md section 6):
     NaN, flagged UNRESOLVED, never an infinity (which the contract keeps for unbounded limits)."""
+    whole = bool(np.all(deep))
     for n in valued:
+        resolved = np.where(np.isfinite(below[n]), below[n], np.nan)
+        if whole:
+            out[n] = resolved.reshape(shape)
+            continue
         full = np.empty(shape)
         if n in out:
             full[~deep] = np.broadcast_to(out[n], shape)[~deep]
-        full[deep] = np.where(np.isfinite(below[n]), below[n], np.nan)
+        full[deep] = resolved
         out[n] = full
     if "validity" in names:
         flag = validity_flag(*(out[n] for n in flagged))
@@ -365,7 +376,8 @@ def _point_fields(names: list[str], *, stress: Callable[[tuple[str, ...]], dict]
             infinite = np.zeros(shape, dtype=bool)
             for s in STRESS:
                 infinite |= np.isinf(tensor[s])
-            out["singular"] = singular(np.flatnonzero(infinite))
+            idx = np.flatnonzero(infinite)
+            out["singular"] = singular(idx) if idx.size else None
     if "dpdz" in names:
         out["dpdz"] = dpdz()
     if "region" in names:
@@ -394,12 +406,13 @@ class Singular(NamedTuple):
         return cls(profile, (size,), idx, *(np.broadcast_to(np.asarray(arrays[k], dtype=float), (size,))[idx]
                                             for k in cls._fields[3:]))
 
-    @classmethod
-    def join(cls, parts: list, profile: Profile, shape) -> "Singular":
-        """The points of ``parts`` (each of ``shape``, disjoint) together."""
-        empty = np.zeros(0)
-        return cls(profile, tuple(shape), np.concatenate([p.index for p in parts] or [np.zeros(0, dtype=np.int64)]),
-                   *(np.concatenate([getattr(p, k) for p in parts] or [empty]) for k in cls._fields[3:]))
+    @staticmethod
+    def join(parts: list, shape) -> "Singular | None":
+        """The points of ``parts`` (each of ``shape``, disjoint) together; None if there are none."""
+        if not parts:
+            return None
+        return parts[0]._replace(shape=tuple(shape), **{k: np.concatenate([getattr(p, k) for p in parts])
+                                                        for k in Singular._fields[2:]})
 
     def moved(self, index: np.ndarray, shape) -> "Singular":
         """The points of a flat group whose point i is the flat point ``index[i]`` of ``shape``."""
