@@ -272,7 +272,7 @@ def _with_depth(names, profile, x, y, z, case, load, method, rtol, flagged):
     out: dict = {}
     if top:
         out, _ = _on_surface(top, profile, x, y, case, load, method, rtol)
-        out = {n: v if n in _VALUED else (v and v.broadcast(shape, ~deep)) if n == "singular"
+        out = {n: v if n in _VALUED else (None if v is None else v.broadcast(shape, ~deep)) if n == "singular"
                else np.array(np.broadcast_to(v, shape)) for n, v in out.items()}
     if "singular" in names and "singular" not in out:
         out["singular"] = None
