@@ -10,6 +10,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))   # 
 import harness as bench  # noqa: E402
 
 
+@pytest.mark.slow          # ~2 s: CI runs it with the slow tests
 def test_bench_tiny(tmp_path):
     ds, tp = bench.measure(bench.TINY, peers=False)
     assert tp == {}                                        # no throughput in the tiny run

@@ -18,6 +18,9 @@ from stressfields import suite
 from stressfields.output.formats import format_for
 from stressfields.output.hashing import values_hash
 
+#: building the suite's datasets takes seconds per worker: CI runs these with the slow tests
+pytestmark = pytest.mark.slow
+
 ROOT = Path(__file__).resolve().parents[1]
 REGISTRY = suite.registry()
 

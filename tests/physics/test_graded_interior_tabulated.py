@@ -110,6 +110,7 @@ def test_k_above_zero_and_a_clamped_tip_are_refused_in_one_line():
             call()
 
 
+@pytest.mark.slow          # ~2 s: CI runs it with the slow tests
 def test_peak_of_a_sampled_paraboloid_is_the_closed_form_peak():
     """The peak search on the tabulated field finds the paraboloid's tau_max peak (on the axis at 0.48 a,
     found on its closed form) to the superposition's rtol in value and the search's 1e-7 a in position."""

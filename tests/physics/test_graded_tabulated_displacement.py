@@ -66,6 +66,7 @@ def _uz_defining(r, a, prof, k, knots):
     return 2 / np.pi * np.cos(k * np.pi / 2) * quad(fn, 0, a, points=pts, epsabs=0, epsrel=1e-13, limit=800)[0]
 
 
+@pytest.mark.slow          # quadpack references, ~5 s in all: CI runs them with the slow tests
 @pytest.mark.parametrize("rtol", RTOLS)
 @pytest.mark.parametrize("k", [1e-6, 0.5])
 def test_uz_against_quadrature_of_the_defining_integral(k, rtol):
@@ -183,6 +184,7 @@ def _pressure_defining(r, a, prof, k, knots):
     return (head + tail) / np.pi
 
 
+@pytest.mark.slow          # quadpack references: CI runs them with the slow tests
 @pytest.mark.parametrize("rtol", RTOLS)
 @pytest.mark.parametrize("k", [1e-6, 0.5, 0.9])
 def test_pressure_against_quadrature_of_the_defining_integral(k, rtol):

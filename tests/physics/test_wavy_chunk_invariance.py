@@ -102,6 +102,7 @@ def _recipe(method, num):
     return {"scenario": "wavy", "parameters": params, "method": {"method": method, "rtol": 1e-6}}
 
 
+@pytest.mark.slow          # ~2 s a method: CI runs it with the slow tests
 @pytest.mark.parametrize("method", ["auto", "series"])
 def test_scenario_values_do_not_depend_on_the_chunking(method):
     recipe = _recipe(method, 61)

@@ -254,7 +254,7 @@ def _uz_quadrature(x, w, amplitudes, wavenumbers, periodic):
     return -total / np.pi
 
 
-@pytest.mark.parametrize("periodic", [True, False])
+@pytest.mark.parametrize("periodic", [pytest.param(True, marks=pytest.mark.slow), False])
 def test_pressure_solves_the_contact_integral_equation(periodic):
     """The pressure, combined with E* (docs/theory/wavy.md (W5)), reproduces the imposed surface
     displacement in the contact: u_z(x) - u_z(0) = -g(x) with u_z from quadrature of eq. (5), for the
