@@ -34,6 +34,18 @@ def kill_after_two_parts(recipe: Path, target: Path, timeout: float) -> dict:
     return json.loads(manifest.read_text())
 
 
+@pytest.fixture(scope="session")
+def recipe_outputs(tmp_path_factory):
+    """Every recipe of recipes/ run once per test process into NetCDF (about 9 s): the CF, ParaView and
+    client tests read these files and never change them."""
+    from stressfields import cli
+
+    out = tmp_path_factory.mktemp("recipes")
+    recipes = sorted((DATA.parents[1] / "recipes").glob("*.toml"))
+    assert cli.main(["run", *map(str, recipes), "--out-dir", str(out), "-q"]) == 0
+    return out
+
+
 @pytest.fixture(autouse=True)
 def _mpmath_precision_restored():
     """mpmath's working precision is global: a test that lowers it for a quick reference must not

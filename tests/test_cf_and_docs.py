@@ -10,7 +10,6 @@ import pytest
 import xarray as xr
 
 import stressfields as sf
-from stressfields import cli
 from stressfields.scenarios import REGISTRY
 from stressfields.scenarios.base import LABEL_CHARS, PLOT_LABEL_CHARS
 from stressfields.scenarios.scales import Scale
@@ -20,11 +19,10 @@ ROOT = Path(__file__).resolve().parents[1]
 RECIPES = sorted((ROOT / "recipes").glob("*.toml"))
 
 
-@pytest.fixture(scope="module")
-def outputs(tmp_path_factory):
-    out = tmp_path_factory.mktemp("out")
-    assert cli.main(["run", *map(str, RECIPES), "--out-dir", str(out), "-q"]) == 0
-    return out
+@pytest.fixture
+def outputs(recipe_outputs):
+    """Every recipe's NetCDF output (tests/conftest.py: made once per test process)."""
+    return recipe_outputs
 
 
 def cf_failures(path: Path) -> list:

@@ -246,13 +246,6 @@ ROOT = Path(__file__).resolve().parents[1]
 RECIPES = sorted((ROOT / "recipes").glob("*.toml"))
 
 
-@pytest.fixture(scope="module")
-def recipe_outputs(tmp_path_factory):
-    out = tmp_path_factory.mktemp("recipes")
-    assert cli.main(["run", *map(str, RECIPES), "--out-dir", str(out), "-q"]) == 0
-    return out
-
-
 def test_choice_dimensions_are_labelled_in_memory():
     ds = sf.generate(CHOICES)
     assert list(ds.control.values) == ["fixed_load", "fixed_grips"] and "control_name" not in ds.coords
