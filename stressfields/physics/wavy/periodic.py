@@ -155,13 +155,6 @@ def _one_minus_legendre(k, u):
     return np.where(small, total, 1.0 - eval_legendre(k, 1.0 - 2.0 * u))
 
 
-def _w_of_x(x, a):
-    """w = r - sqrt(r^2 - 1) in (0, 1] for a <= x <= pi, cancellation-free:
-    w = sin(a/2) cos(x/2) / (sin(x/2) cos(a/2) + sqrt(sin((x-a)/2) sin((x+a)/2)))."""
-    s = np.sqrt(np.maximum(np.sin(0.5 * (x - a)) * np.sin(0.5 * (x + a)), 0.0))
-    return np.sin(0.5 * a) * np.cos(0.5 * x) / (np.sin(0.5 * x) * np.cos(0.5 * a) + s)
-
-
 class OutsideTable:
     """gap(x)/Delta_1 = int_a^x [g'(y) + u_z'(y)] dy / Delta_1 for a < x <= pi, every table row,
     docs/theory/wavy.md (W18).

@@ -74,11 +74,3 @@ def gap(x, delta_ratio, n, N):
         s = np.sin(0.5 * n[i] * x)
         out += np.where(N > i, 2.0 * delta_ratio[i] * s * s, 0.0)
     return out
-
-
-def gap_slope(x, delta_ratio, n, N):
-    """g'(x)/Delta_1 = sum_{i<N} (Delta_i/Delta_1) n_i sin n_i x."""
-    out = np.zeros(np.broadcast(x, N).shape)
-    for i in range(len(n)):
-        out += np.where(N > i, delta_ratio[i] * n[i] * np.sin(n[i] * x), 0.0)
-    return out
