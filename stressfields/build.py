@@ -176,19 +176,23 @@ def _groups(recipe: Recipe) -> dict[tuple[str, ...], list[str]]:
     return groups
 
 
+def group_columns(recipe, names) -> list[str]:
+    """The [points] columns a group of variables depends on (all of them for a variable that depends
+    on every parameter)."""
+    deps = [recipe.scenario.variable(n).dims for n in names]
+    return [col for col in recipe.points if any(d is None or col in d for d in deps)]
+
+
 def _inputs(recipe, dims, names, chunking) -> dict[str, xr.DataArray]:
     """The arrays a group varies with, by parameter: a swept one along its dimension; the [points]
     columns the group depends on along POINT, chunked alike so that blocks pair up point by point."""
-    scen = recipe.scenario
     out = {}
     for dim in dims:
         if dim != POINT:
             out[dim] = xr.DataArray(recipe.values[dim], dims=(dim,)).chunk({dim: chunking[dim]})
             continue
-        deps = [scen.variable(n).dims for n in names]
-        for col in recipe.points:
-            if any(d is None or col in d for d in deps):
-                out[col] = xr.DataArray(recipe.values[col], dims=(POINT,)).chunk({POINT: chunking[POINT]})
+        for col in group_columns(recipe, names):
+            out[col] = xr.DataArray(recipe.values[col], dims=(POINT,)).chunk({POINT: chunking[POINT]})
     return out
 
 

@@ -242,6 +242,7 @@ def _evaluate_now(recipe, dims, names, fixed, options, chunking) -> list[np.ndar
     recipe sweeps only its [points] (`_derived_recipe`)."""
     from concurrent.futures import ThreadPoolExecutor
 
+    from .build import group_columns
     from .procedural import evaluate
 
     scen = recipe.scenario
@@ -253,9 +254,7 @@ def _evaluate_now(recipe, dims, names, fixed, options, chunking) -> list[np.ndar
         raise CompareError(f"scenario '{scen.name}' gives {', '.join(names)} along "
                            f"{', '.join(d for d in dims if d != POINT)} as well as the nodes; compare takes fields "
                            "that vary with the nodes alone")
-    deps = [scen.variable(n).dims for n in names]
-    # the columns of the nodes this group depends on, as `build._inputs` chooses them
-    columns = [c for c in recipe.points if any(d is None or c in d for d in deps)]
+    columns = group_columns(recipe, names)      # the nodes' columns this group depends on, as build's
     size, step = recipe.shape[POINT], chunking[POINT]
     out = [np.empty(size, dt) for dt in dtypes]
 
